@@ -1,0 +1,25 @@
+# bhnsid_add_plugin(NAME SOURCES a.cpp b.cpp ... [TEST_ONLY])
+# Builds libbhnsid_NAME.so into the plugin folder (build/lib/bhnsid), or, for TEST_ONLY plugins
+# used by the core's tests, into build/test-plugins where a normal run never finds them.
+# Only the entry point is exported; everything else stays private to the plugin.
+define_property(GLOBAL PROPERTY BHNSID_PLUGIN_TARGETS BRIEF_DOCS "plugin targets" FULL_DOCS "all plugin targets")
+
+function(bhnsid_add_plugin name)
+  cmake_parse_arguments(ARG "TEST_ONLY" "" "SOURCES" ${ARGN})
+  set(target bhnsid_${name})
+  add_library(${target} MODULE ${ARG_SOURCES})
+  target_link_libraries(${target} PRIVATE bhnsid_core)
+  if(ARG_TEST_ONLY)
+    set(out ${BHNSID_TEST_PLUGIN_DIR})
+  else()
+    set(out ${BHNSID_PLUGIN_OUTPUT_DIR})
+  endif()
+  set_target_properties(${target} PROPERTIES
+    PREFIX "lib"
+    LIBRARY_OUTPUT_DIRECTORY ${out}
+    CXX_VISIBILITY_PRESET hidden
+    VISIBILITY_INLINES_HIDDEN ON
+    BUILD_RPATH "$ORIGIN/.."
+    INSTALL_RPATH "$ORIGIN/..")
+  set_property(GLOBAL APPEND PROPERTY BHNSID_PLUGIN_TARGETS ${target})
+endfunction()

@@ -1,0 +1,95 @@
+// The bhnsid command line: parse with CLI11, hand off to a subcommand, turn typed errors into
+// one message and an exit code (2 for bad input, 1 for a failed run, 3 for an internal error).
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <csignal>
+#include <iostream>
+
+#include "bhnsid/core/build_info.hpp"
+#include "bhnsid/core/errors.hpp"
+#include "commands.hpp"
+
+using namespace bhnsid;
+
+namespace {
+std::string shell_quote(const std::string& arg) {
+  if (!arg.empty() && arg.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./=:,[]") ==
+                          std::string::npos)
+    return arg;
+  std::string out = "'";
+  for (char c : arg) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  // A full disk or a file-size limit must reach us as a write error, not kill the process.
+  std::signal(SIGXFSZ, SIG_IGN);
+
+  cli::CommonOptions common;
+  for (int i = 0; i < argc; ++i) common.command_line += (i ? " " : "") + shell_quote(argv[i]);
+
+  CLI::App app{"bhnsid: general-relativistic initial data for black hole-neutron star binaries"};
+  app.set_version_flag("--version", fmt::format("bhnsid {} ({}, {})", core::build_version(),
+                                                core::build_git_revision(), core::build_type()));
+  app.require_subcommand(1);
+  const auto add_plugin_path = [&](CLI::App* sub) {
+    sub->add_option("--plugin-path", common.plugin_dirs, "extra plugin folder, searched after the build's and BHNSID_PLUGIN_PATH (repeatable)");
+  };
+  std::string parfile, output;
+  bool force = false, yaml = false;
+  std::vector<std::string> plugin_names;
+
+  auto* run = app.add_subcommand("run", "validate, then run a parameter file and write its run directory");
+  run->add_option("parfile", parfile, "parameter file (YAML)")->required();
+  run->add_option("--set", common.overrides, "override a parameter: section.key=value (repeatable)");
+  run->add_option("--output", output, "run directory (default runs/<parfile stem>)");
+  run->add_flag("--force", force, "replace an existing run directory");
+  add_plugin_path(run);
+
+  auto* check = app.add_subcommand("check", "validate a parameter file completely without running it (exit 0 or 2)");
+  check->add_option("parfile", parfile, "parameter file (YAML)")->required();
+  check->add_option("--set", common.overrides, "override a parameter: section.key=value (repeatable)");
+  add_plugin_path(check);
+
+  auto* schedule = app.add_subcommand("schedule", "print the ordered schedule of a parameter file without running");
+  schedule->add_option("parfile", parfile, "parameter file (YAML)")->required();
+  schedule->add_option("--set", common.overrides, "override a parameter: section.key=value (repeatable)");
+  add_plugin_path(schedule);
+
+  auto* params = app.add_subcommand("params", "print every parameter (type, default, range, doc) of plugins");
+  params->add_option("plugins", plugin_names, "plugins to describe (default: all on the plugin path)");
+  params->add_flag("--yaml", yaml, "print a complete commented parameter file for these plugins instead");
+  add_plugin_path(params);
+
+  auto* plugins = app.add_subcommand("plugins", "list the plugins on the plugin path");
+  add_plugin_path(plugins);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return core::exit_input;
+  }
+
+  try {
+    if (run->parsed()) return cli::cmd_run(parfile, common, output, force);
+    if (check->parsed()) return cli::cmd_check(parfile, common);
+    if (schedule->parsed()) return cli::cmd_schedule(parfile, common);
+    if (params->parsed()) return cli::cmd_params(plugin_names, yaml, common);
+    if (plugins->parsed()) return cli::cmd_plugins(common);
+  } catch (const core::InputError& e) {
+    fmt::print(stderr, "bhnsid: error: {}\n", e.what());
+    return core::exit_input;
+  } catch (const core::RunFailure& e) {
+    fmt::print(stderr, "bhnsid: run failed: {}\n", e.what());
+    return core::exit_run_failed;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "bhnsid: internal error: {}\n", e.what());
+    return core::exit_internal;
+  }
+  return core::exit_internal;
+}

@@ -1,0 +1,20 @@
+#pragma once
+// Crash-safe output: a file appears under its final name only when it is complete.
+#include <filesystem>
+#include <string>
+
+namespace bhnsid::core {
+
+/// Writes `contents` to a temporary file beside `path`, fsyncs it, renames it over `path` and
+/// fsyncs the directory. Any failure (disk full, read-only, ...) removes the temporary and throws
+/// InputError naming the file and the system's reason; `path` is then untouched.
+void write_file_atomic(const std::filesystem::path& path, const std::string& contents);
+
+/// Renames a finished file into place and fsyncs both; InputError on failure.
+void commit_file(const std::filesystem::path& from, const std::filesystem::path& to);
+
+/// Creates the run directory. An existing one is refused unless `force`, and even then only when
+/// it looks like a bhnsid run directory (so --force never deletes an unrelated folder).
+void prepare_run_directory(const std::filesystem::path& dir, bool force);
+
+}  // namespace bhnsid::core

@@ -1,0 +1,55 @@
+#pragma once
+// What a scheduled function sees: its own parameters, the services, the log, the run directory
+// and the scalars that end up in summary.json. One Context per active plugin.
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bhnsid/core/log.hpp"
+#include "bhnsid/core/params.hpp"
+#include "bhnsid/core/plugin.hpp"
+#include "bhnsid/core/services.hpp"
+
+namespace bhnsid::core {
+
+class RunState;
+
+class Context {
+ public:
+  Context(RunState& state, const PluginDecl& decl);
+
+  const std::string& plugin() const { return decl_->name; }
+  /// This plugin's own section.
+  const ParamSection& params() const;
+  /// Another active plugin's section, or "run" for the core's; read-only sharing.
+  const ParamSection& params(const std::string& section) const;
+
+  const Log& log() const { return log_; }
+  const Services& services() const;
+
+  /// Publish a service under a capability this plugin declared in `implements`.
+  template <class T>
+  void publish(const std::string& capability, std::shared_ptr<T> service) {
+    publish_raw(capability, std::static_pointer_cast<Service>(std::move(service)));
+  }
+
+  /// A number for summary.json "scalars"; set during the loop it is also recorded per iteration.
+  void set_scalar(const std::string& name, double value);
+  /// Current loop iteration (1-based), 0 before the loop.
+  int iteration() const;
+  /// The run directory; empty for `bhnsid check` and `schedule`.
+  const std::filesystem::path& run_directory() const;
+  /// Writes run_directory()/relative_name atomically (temporary name, fsync, rename).
+  void write_output(const std::string& relative_name, const std::string& contents) const;
+  /// Every variable declared by an active plugin, in plugin order.
+  const std::vector<VariableSpec>& variables() const;
+
+ private:
+  void publish_raw(const std::string& capability, std::shared_ptr<Service> service);
+  RunState* state_;
+  const PluginDecl* decl_;
+  Log log_;
+};
+
+}  // namespace bhnsid::core

@@ -1,0 +1,25 @@
+#pragma once
+// Typed errors that the CLI maps to exit codes: bad input of any kind (parameter file, plugin files,
+// output directory) is an InputError (exit 2); a physics run that cannot reach its answer is a
+// RunFailure (status "failed", exit 1, OUTPUT and TERMINATE still run).
+#include <stdexcept>
+#include <string>
+
+namespace bhnsid::core {
+
+class InputError : public std::runtime_error {
+ public:
+  explicit InputError(const std::string& what);
+  ~InputError() override;
+};
+
+class RunFailure : public std::runtime_error {
+ public:
+  explicit RunFailure(const std::string& what);
+  ~RunFailure() override;
+};
+
+/// Process exit codes, stable for scripts and tests.
+enum ExitCode : int { exit_ok = 0, exit_run_failed = 1, exit_input = 2, exit_internal = 3 };
+
+}  // namespace bhnsid::core

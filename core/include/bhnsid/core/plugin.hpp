@@ -1,0 +1,107 @@
+#pragma once
+// The plugin contract. A plugin exports exactly one C function,
+//
+//   extern "C" BHNSID_EXPORT const BhnsidPluginInfo* bhnsid_plugin_info();
+//
+// returning a plain struct whose first field is the ABI version it was built against. The loader
+// checks that field before touching anything else, then calls `declare` with a PluginBuilder.
+// `declare` must be cheap and side-effect free: it also runs for `bhnsid params` and `plugins`.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bhnsid/core/param_spec.hpp"
+#include "bhnsid/core/schedule.hpp"
+#include "bhnsid/core/variables.hpp"
+
+#define BHNSID_ABI_VERSION 1u
+#define BHNSID_EXPORT __attribute__((visibility("default")))
+
+namespace bhnsid::core {
+
+/// Everything a plugin declares; introspectable without running it.
+struct PluginDecl {
+  std::string name, version, description;
+  std::vector<std::string> implements;
+  std::vector<std::string> requires_caps;
+  std::vector<ParamSpec> params;
+  std::vector<VariableSpec> variables;
+  std::vector<ScheduleEntry> schedule;
+
+  const ParamSpec* find_param(const std::string& key) const;
+};
+
+class PluginBuilder;
+
+/// Fluent handle on one declared parameter; valid only while `declare` runs.
+class ParamHandle {
+ public:
+  ParamHandle(PluginDecl& decl, std::size_t index) : decl_(&decl), index_(index) {}
+  ParamHandle& doc(std::string text);
+  ParamHandle& default_value(ParamValue value);
+  /// No default: the user must give it. `example` is what `bhnsid params --yaml` writes.
+  ParamHandle& required(ParamValue example);
+  ParamHandle& at_least(double lo);
+  ParamHandle& greater_than(double lo);
+  ParamHandle& at_most(double hi);
+  ParamHandle& less_than(double hi);
+  ParamHandle& length(int n);
+  ParamHandle& steerable();
+
+ private:
+  ParamSpec& spec();
+  PluginDecl* decl_;
+  std::size_t index_;
+};
+
+class ScheduleHandle {
+ public:
+  ScheduleHandle(PluginDecl& decl, std::size_t index) : decl_(&decl), index_(index) {}
+  ScheduleHandle& doc(std::string text);
+  ScheduleHandle& before(std::string full_name);
+  ScheduleHandle& after(std::string full_name);
+
+ private:
+  PluginDecl* decl_;
+  std::size_t index_;
+};
+
+class PluginBuilder {
+ public:
+  explicit PluginBuilder(PluginDecl& decl) : decl_(decl) {}
+
+  void implements(std::string capability);
+  void require(std::string capability);
+
+  ParamHandle boolean(std::string name);
+  ParamHandle integer(std::string name);
+  ParamHandle real(std::string name);
+  ParamHandle string(std::string name);
+  ParamHandle keyword(std::string name, std::vector<std::string> allowed);
+  ParamHandle real_vector(std::string name);
+
+  void variable(VariableSpec spec);
+
+  ScheduleHandle schedule(Bin bin, std::string name, ScheduledFn fn);
+  ScheduleHandle check(std::string name, CheckFn fn);
+
+ private:
+  ParamHandle add_param(std::string name, ParamType type);
+  PluginDecl& decl_;
+};
+
+/// Checks what a plugin declared (names, docs, defaults inside ranges, unique entries); throws
+/// InputError naming the plugin, since a malformed declaration is the plugin author's input error.
+void validate_declaration(const PluginDecl& decl);
+
+}  // namespace bhnsid::core
+
+extern "C" {
+struct BhnsidPluginInfo {
+  std::uint32_t abi_version;
+  const char* name;
+  const char* version;
+  const char* description;
+  void (*declare)(bhnsid::core::PluginBuilder&);
+};
+}

@@ -1,0 +1,41 @@
+#pragma once
+// Schedule bins and entries. STARTUP..INITIAL run once, SOLVE/UPDATE/CHECK form the loop, then
+// ANALYSIS, OUTPUT and TERMINATE run once, also after a failed loop so the last state is kept.
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace bhnsid::core {
+
+class Context;
+
+enum class Bin { startup, paramcheck, setup, initial, solve, update, check, analysis, output, terminate };
+
+const char* to_string(Bin bin);
+bool in_loop(Bin bin);
+/// All bins in execution order.
+const std::vector<Bin>& all_bins();
+
+/// What a CHECK entry reports after each loop iteration.
+struct Convergence {
+  bool converged = false;
+  std::string detail;  ///< e.g. "max |d sigma| = 3e-5 (tol 1e-4)", printed with the iteration
+};
+
+using ScheduledFn = std::function<void(Context&)>;
+using CheckFn = std::function<Convergence(Context&)>;
+
+struct ScheduleEntry {
+  std::string plugin;  ///< filled in by the core
+  std::string name;    ///< unique within the plugin; referred to as "plugin.name"
+  Bin bin = Bin::startup;
+  std::string doc;
+  std::vector<std::string> before;  ///< "plugin.name" entries of the same bin this must precede
+  std::vector<std::string> after;   ///< "plugin.name" entries of the same bin this must follow
+  ScheduledFn fn;                   ///< every bin but CHECK
+  CheckFn check;                    ///< CHECK only
+
+  std::string full_name() const { return plugin + "." + name; }
+};
+
+}  // namespace bhnsid::core

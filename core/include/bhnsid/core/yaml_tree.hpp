@@ -1,0 +1,41 @@
+#pragma once
+// A YAML document as a plain tree that keeps every key (yaml-cpp's node API silently drops
+// duplicates) and the line and column of every node, so errors can point at the text.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace bhnsid::core {
+
+struct TextPos {
+  std::string source;  ///< file name, or "--set ..." for command-line overrides
+  int line = 0;        ///< 1-based; 0 when unknown
+  int column = 0;      ///< 1-based
+  std::string str() const;  ///< "file:line:col"
+};
+
+struct YamlNode {
+  enum class Kind { null, scalar, sequence, map };
+  Kind kind = Kind::null;
+  std::string scalar;
+  bool plain = true;  ///< false for quoted scalars: never read as a number or a bool
+  std::vector<YamlNode> items;                       ///< sequence
+  std::vector<std::pair<YamlNode, YamlNode>> entries;  ///< map, in file order, keys are scalars
+  TextPos pos;
+
+  const char* kind_name() const;
+};
+
+/// Limits that keep hostile input from exhausting the stack or memory.
+inline constexpr int yaml_max_depth = 32;
+inline constexpr std::size_t yaml_max_bytes = 4u << 20;
+
+/// Parses one document; throws InputError "source:line:col: what" on syntax errors, duplicate keys,
+/// non-scalar keys, anchors/aliases, more than one document, or nesting deeper than yaml_max_depth.
+YamlNode parse_yaml(const std::string& text, const std::string& source);
+/// Reads and parses a file; missing, unreadable, empty or oversized files are InputErrors.
+YamlNode read_yaml_file(const std::filesystem::path& path);
+
+}  // namespace bhnsid::core

@@ -1,0 +1,55 @@
+#include "bhnsid/core/context.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "bhnsid/core/atomic_file.hpp"
+#include "run_state.hpp"
+
+namespace bhnsid::core {
+
+Context::Context(RunState& state, const PluginDecl& decl) : state_(&state), decl_(&decl), log_(&state.sink, decl.name) {}
+
+const ParamSection& Context::params() const { return state_->config.params.at(decl_->name); }
+
+const ParamSection& Context::params(const std::string& section) const {
+  auto it = state_->config.params.find(section);
+  if (it == state_->config.params.end())
+    throw std::logic_error(fmt::format("plugin '{}' reads section '{}', which is not active", decl_->name, section));
+  return it->second;
+}
+
+const Services& Context::services() const { return state_->services; }
+
+void Context::publish_raw(const std::string& capability, std::shared_ptr<Service> service) {
+  if (std::find(decl_->implements.begin(), decl_->implements.end(), capability) == decl_->implements.end())
+    throw std::logic_error(fmt::format("plugin '{}' publishes service '{}' without declaring that it implements it",
+                                       decl_->name, capability));
+  state_->services.publish_raw(decl_->name, capability, std::move(service));
+}
+
+void Context::set_scalar(const std::string& name, double value) {
+  auto& scalars = state_->scalars;
+  auto it = std::find_if(scalars.begin(), scalars.end(), [&](const auto& s) { return s.first == name; });
+  if (it == scalars.end())
+    scalars.emplace_back(name, value);
+  else
+    it->second = value;
+  if (state_->in_loop && !state_->history.empty()) {
+    auto& columns = state_->history_columns;
+    if (std::find(columns.begin(), columns.end(), name) == columns.end()) columns.push_back(name);
+    state_->history.back()[name] = value;
+  }
+}
+
+int Context::iteration() const { return state_->iteration; }
+const std::filesystem::path& Context::run_directory() const { return state_->run_dir; }
+
+void Context::write_output(const std::string& relative_name, const std::string& contents) const {
+  write_file_atomic(state_->run_dir / relative_name, contents);
+}
+
+const std::vector<VariableSpec>& Context::variables() const { return state_->config.variables; }
+
+}  // namespace bhnsid::core

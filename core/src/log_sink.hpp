@@ -1,0 +1,30 @@
+#pragma once
+// Where Log lines go: the terminal (info to stdout, warnings to stderr) and, during a run, the
+// run directory's log.txt.partial, renamed to log.txt when the run ends.
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+#include <string>
+
+namespace bhnsid::core {
+
+class LogSink {
+ public:
+  LogSink() = default;
+  LogSink(const LogSink&) = delete;
+  LogSink& operator=(const LogSink&) = delete;
+  ~LogSink();
+
+  void open_file(const std::filesystem::path& partial);
+  void write(bool warning, const std::string& prefix, const std::string& message);
+  /// Closes the file and renames it to `final_path`; InputError if any write to it failed.
+  void finish(const std::filesystem::path& final_path);
+
+ private:
+  std::mutex mutex_;
+  std::FILE* file_ = nullptr;
+  std::filesystem::path partial_;
+  bool failed_ = false;
+};
+
+}  // namespace bhnsid::core

@@ -1,0 +1,28 @@
+#pragma once
+// The state one run shares between the core and every plugin's Context.
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bhnsid/core/configuration.hpp"
+#include "bhnsid/core/services.hpp"
+#include "log_sink.hpp"
+
+namespace bhnsid::core {
+
+struct RunState {
+  explicit RunState(const Configuration& c) : config(c) {}
+  const Configuration& config;
+  LogSink sink;
+  Services services;
+  std::filesystem::path run_dir;
+  int iteration = 0;
+  bool in_loop = false;
+  std::vector<std::pair<std::string, double>> scalars;  ///< summary.json order: first set, first listed
+  std::vector<std::string> history_columns;
+  std::vector<std::map<std::string, double>> history;  ///< one row per loop iteration
+};
+
+}  // namespace bhnsid::core
