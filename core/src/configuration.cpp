@@ -26,7 +26,8 @@ void check_capabilities(const Configuration& config, const PluginLoader& loader)
         std::vector<std::string> candidates;
         for (const auto& [name, file] : loader.available()) {
           try {
-            for (const auto& c : PluginLoader::load_file(file)->decl.implements)
+            const auto candidate = PluginLoader::load_file(file);
+            for (const auto& c : candidate->decl.implements)
               if (c == cap) candidates.push_back(name);
           } catch (const InputError&) {
           }

@@ -49,8 +49,8 @@ std::string describe_range(const ParamSpec& spec) {
     case ParamType::real_vector: {
       std::string text;
       if (has_range(spec))
-        text = fmt::format("{}{}, {}{}", spec.min_open ? "(" : "[", bound(spec.min), bound(spec.max),
-                           spec.max_open ? ")" : "]");
+        text = fmt::format("{}{}, {}{}", spec.min_open || std::isinf(spec.min) ? "(" : "[", bound(spec.min),
+                           bound(spec.max), spec.max_open || std::isinf(spec.max) ? ")" : "]");
       else
         text = spec.type == ParamType::integer ? "any integer" : "any finite real";
       if (spec.type == ParamType::real_vector)
@@ -90,7 +90,9 @@ std::string format_value(const ParamValue& value) {
 }
 
 std::string check_value(const ParamSpec& spec, const ParamValue& value) {
-  const auto range_message = [&] { return "a " + std::string(to_string(spec.type)) + " in " + describe_range(spec); };
+  const auto range_message = [&] {
+    return std::string(spec.type == ParamType::integer ? "an integer" : "a real") + " in " + describe_range(spec);
+  };
   switch (spec.type) {
     case ParamType::boolean:
       return std::holds_alternative<bool>(value) ? "" : "true or false";

@@ -1,0 +1,24 @@
+// Test plugin: requires the `counter` capability, orders itself around tp_counter's entries
+// (and around an entry of a plugin that is not active, which must be ignored), reads the service.
+#include "bhnsid/core/context.hpp"
+#include "bhnsid/core/plugin.hpp"
+#include "tp_interfaces.hpp"
+
+namespace {
+using namespace bhnsid::core;
+
+void declare(PluginBuilder& b) {
+  b.require("counter");
+  b.schedule(Bin::initial, "before_counter", [](Context& ctx) {
+    ctx.set_scalar("partner_saw_counter", ctx.services().get<bhnsid::test::CounterService>("counter").value);
+  }).before("tp_counter.initial").after("not_loaded_plugin.anything").doc("runs before tp_counter.initial");
+  b.schedule(Bin::analysis, "after_counter", [](Context& ctx) {
+    ctx.set_scalar("partner_final_counter", ctx.services().get<bhnsid::test::CounterService>("counter").value);
+  }).after("tp_counter.analysis");
+}
+}  // namespace
+
+extern "C" BHNSID_EXPORT const BhnsidPluginInfo* bhnsid_plugin_info() {
+  static const BhnsidPluginInfo info{BHNSID_ABI_VERSION, "tp_partner", "1.0", "test: requires counter, ordered", &declare};
+  return &info;
+}
