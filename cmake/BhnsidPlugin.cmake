@@ -2,12 +2,20 @@
 # Builds libbhnsid_NAME.so into the plugin folder (build/lib/bhnsid), or, for TEST_ONLY plugins
 # used by the core's tests, into build/test-plugins where a normal run never finds them.
 # Only the entry point is exported; everything else stays private to the plugin.
+# Unit tests of a plugin link bhnsid_NAME_objects (its code, headers on the include path).
 define_property(GLOBAL PROPERTY BHNSID_PLUGIN_TARGETS BRIEF_DOCS "plugin targets" FULL_DOCS "all plugin targets")
 
 function(bhnsid_add_plugin name)
   cmake_parse_arguments(ARG "TEST_ONLY" "" "SOURCES" ${ARGN})
   set(target bhnsid_${name})
-  add_library(${target} MODULE ${ARG_SOURCES})
+  # The objects are a target of their own so that the plugin's unit tests (tests/plugins/NAME)
+  # can link the same code the shared library is made of.
+  add_library(${target}_objects OBJECT ${ARG_SOURCES})
+  target_link_libraries(${target}_objects PUBLIC bhnsid_core)
+  target_include_directories(${target}_objects PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
+  set_target_properties(${target}_objects PROPERTIES
+    POSITION_INDEPENDENT_CODE ON CXX_VISIBILITY_PRESET hidden VISIBILITY_INLINES_HIDDEN ON)
+  add_library(${target} MODULE $<TARGET_OBJECTS:${target}_objects>)
   target_link_libraries(${target} PRIVATE bhnsid_core)
   if(ARG_TEST_ONLY)
     set(out ${BHNSID_TEST_PLUGIN_DIR})

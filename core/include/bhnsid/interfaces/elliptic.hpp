@@ -1,0 +1,60 @@
+#pragma once
+// An elliptic equation as the multigrid solver sees it: one unknown grid field (1 or 3 components)
+// with a nonlinear operator L, solved for L(u) = 0 on the finest level. The solver owns everything
+// else: the right-hand sides that FAS puts on coarse levels, restriction of the coefficient fields,
+// the outer-boundary rows and the excision points. Equation plugins publish one EllipticEquation
+// service each, under a capability named "equation.NAME"; the solver relaxes all of them together.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bhnsid/core/services.hpp"
+
+namespace bhnsid {
+
+/// Condition on the outer faces of the cube, per component.
+struct OuterBoundary {
+  enum class Kind {
+    /// (u - u_inf) + (x - centre) . grad u = 0: exact for u_inf + f(angles)/|x - centre|
+    /// (physics-notes §5.2); one-sided second-order normal derivatives, relaxed with the system.
+    robin,
+    /// u keeps the values it has on the faces of the finest level when the solve starts.
+    dirichlet,
+  } kind = Kind::robin;
+  std::vector<double> u_inf;       ///< asymptotic value per component (robin)
+  std::array<double, 3> centre{};  ///< centre of the 1/r falloff (robin)
+};
+
+/// What one relaxation or operator call works on.
+struct RelaxArgs {
+  int level = 0;
+  /// FAS right-hand side per component; nullptr means zero (the finest level).
+  const double* const* rhs = nullptr;
+  /// 1 where the point is held at its value (excision), 0 elsewhere; nullptr means no such point.
+  const std::uint8_t* fixed = nullptr;
+};
+
+class EllipticEquation : public core::Service {
+ public:
+  /// Short name used in reports ("hamiltonian", "momentum", ...).
+  virtual std::string name() const = 0;
+  /// The grid field this equation solves for (registered by the equation on all levels).
+  virtual std::string unknown() const = 0;
+  virtual OuterBoundary boundary() const = 0;
+  /// Name of the grid mask (Grid::add_mask) whose points keep their values; empty for none.
+  virtual std::string excision_mask() const { return {}; }
+  /// Fields the operator reads but does not solve for; the solver restricts them to every level
+  /// by full weighting before each solve. Other equations' unknowns need not be listed.
+  virtual std::vector<std::string> coefficients() const = 0;
+
+  /// out[c] = L(u)_c at every interior point of the level (Level::k_begin() .. nz-2 etc.), fixed
+  /// points included; ghosts of every field read are current when this is called.
+  virtual void apply(const RelaxArgs& args, double* const* out) const = 0;
+  /// One colour of red-black nonlinear Gauss-Seidel at the interior, non-fixed points whose
+  /// (i + j + k) % 2 == colour: one Newton step on the point's own unknowns (a 3x3 solve for a
+  /// vector) toward L(u) = rhs, every other value held.
+  virtual void relax(const RelaxArgs& args, int colour) const = 0;
+};
+
+}  // namespace bhnsid

@@ -1,0 +1,120 @@
+#pragma once
+// The grid interface, published by a grid plugin under the capability "grid". Every equation and
+// the multigrid solver reach grid data through it: the level hierarchy, named fields stored as
+// plain contiguous arrays, ghost filling, excision masks and global reductions. Halo exchange and
+// every reduction live here so that a domain-decomposed (MPI) grid can replace the serial one
+// without touching an equation plugin.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bhnsid/core/services.hpp"
+#include "bhnsid/core/variables.hpp"
+
+namespace bhnsid {
+
+enum class Symmetry { none, equatorial };
+
+/// Sign of one field component under the grid's reflections: z -> -z (always used with equatorial
+/// symmetry) and y -> -y combined with time reversal (reserved for a quadrant grid, physics-notes §8).
+struct Parity {
+  int z = 1;
+  int y = 1;
+};
+
+/// Geometry and memory layout of one level. Stored point (i, j, k), 0 <= i < nx, 0 <= j < ny,
+/// 0 <= k < nz, sits at origin + dx (i, j, k) and lives at data[at(i, j, k)]. One ghost layer
+/// surrounds the stored points; only ghosts on symmetry planes carry values (fill_ghosts).
+struct Level {
+  int index = 0;  ///< 0 is the finest level
+  int n = 0;      ///< intervals per side of the full cube; the cube is [-n dx/2, n dx/2]^3
+  int nx = 0, ny = 0, nz = 0;
+  double dx = 0;
+  std::array<double, 3> origin{};  ///< coordinates of stored point (0, 0, 0)
+  bool z_symmetry = false;          ///< k = 0 is the plane z = 0 and ghost k = -1 mirrors k = 1
+  std::ptrdiff_t sy = 0, sz = 0;    ///< strides in y and z (x is contiguous)
+  std::ptrdiff_t offset = 0;        ///< array index of stored point (0, 0, 0)
+  std::size_t size = 0;             ///< doubles per array, ghosts included
+
+  std::ptrdiff_t at(int i, int j, int k) const { return offset + i + sy * j + sz * k; }
+  double x(int i) const { return origin[0] + dx * i; }
+  double y(int j) const { return origin[1] + dx * j; }
+  double z(int k) const { return origin[2] + dx * k; }
+  /// Points whose equation is the full interior stencil: i, j in [1, nx-2], k in [k_begin(), nz-2].
+  /// All other stored points lie on an outer face of the cube and carry boundary rows.
+  int k_begin() const { return z_symmetry ? 0 : 1; }
+  bool on_outer_face(int i, int j, int k) const {
+    return i == 0 || i == nx - 1 || j == 0 || j == ny - 1 || k == nz - 1 || (k == 0 && !z_symmetry);
+  }
+  /// Half-width of the cube, r_c = n dx / 2.
+  double half_width() const { return 0.5 * n * dx; }
+};
+
+struct FieldInfo {
+  std::string name;
+  std::vector<core::TensorKind> components;  ///< one entry per component (1 or 3 for equations)
+  std::vector<Parity> parity;                ///< derived from the tensor kinds and the time parity
+  core::Storage storage = core::Storage::all_levels;
+};
+
+/// A region whose points are held at Dirichlet values (black-hole excision). A point is inside when
+/// |x - centre|_inf <= half_size (cube) or |x - centre|_2 <= half_size (sphere).
+struct ExcisionRegion {
+  enum class Shape { cube, sphere } shape = Shape::cube;
+  std::array<double, 3> centre{};
+  double half_size = 0;
+};
+
+class Grid : public core::Service {
+ public:
+  virtual Symmetry symmetry() const = 0;
+  virtual int num_levels() const = 0;
+  virtual const Level& level(int index) const = 0;
+  const Level& finest() const { return level(0); }
+  const Level& coarsest() const { return level(num_levels() - 1); }
+
+  /// Registers and allocates (zeroed) a field with one component per tensor kind; registering the
+  /// same name again with the same components returns the existing id, a conflicting one throws.
+  virtual int add_field(const std::string& name, const std::vector<core::TensorKind>& components,
+                        core::TimeParity time_parity = core::TimeParity::even,
+                        core::Storage storage = core::Storage::all_levels) = 0;
+  /// The id of a registered field; throws core::RunFailure naming the field when there is none.
+  virtual int field_id(const std::string& name) const = 0;
+  virtual bool has_field(const std::string& name) const = 0;
+  virtual const FieldInfo& field_info(int field) const = 0;
+  /// The array of one component on one level (Level::size doubles, 64-byte aligned).
+  virtual double* data(int field, int component, int level) = 0;
+  virtual const double* data(int field, int component, int level) const = 0;
+
+  /// Fills the ghost points of one array from its stored points: mirror images across symmetry
+  /// planes (times the parity), and, in a decomposed grid, the neighbours' points.
+  virtual void fill_ghosts(double* values, Parity parity, int level) const = 0;
+  void fill_ghosts(int field, int level) {
+    const FieldInfo& info = field_info(field);
+    for (int c = 0; c < static_cast<int>(info.components.size()); ++c)
+      fill_ghosts(data(field, c, level), info.parity[c], level);
+  }
+
+  /// Registers an excision mask (1 inside the region, 0 outside) built on every level; the same
+  /// name again with the same region returns the existing id.
+  virtual int add_mask(const std::string& name, const ExcisionRegion& region) = 0;
+  virtual int mask_id(const std::string& name) const = 0;
+  virtual const std::uint8_t* mask(int mask, int level) const = 0;
+
+  /// Reductions of per-process partial results over all processes (identity in a serial grid).
+  virtual double global_sum(double local) const = 0;
+  virtual double global_max(double local) const = 0;
+
+  /// Second-order volume integral over the whole cube (both halves with equatorial symmetry) of
+  /// one component on one level: trapezoidal weights, the symmetry plane counted once.
+  virtual double integrate(const double* values, Parity parity, int level) const = 0;
+  /// Value at an arbitrary point of the cube on one level: 4-point Lagrange interpolation along
+  /// each axis (tricubic), using symmetry images near the z = 0 plane and one-sided stencils at faces.
+  virtual double interpolate(const double* values, Parity parity, int level, std::array<double, 3> point) const = 0;
+  /// The stored values on the x axis (j at y = 0, k at z = 0): pairs (x_i, value).
+  virtual std::vector<std::array<double, 2>> line_x(const double* values, int level) const = 0;
+};
+
+}  // namespace bhnsid

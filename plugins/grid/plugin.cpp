@@ -1,0 +1,78 @@
+// The grid plugin: builds the level hierarchy from the parameters and publishes it as the "grid"
+// service before any other plugin's SETUP, so that equations can register their fields there.
+#include <fmt/format.h>
+
+#include <memory>
+
+#include "bhnsid/core/context.hpp"
+#include "bhnsid/core/errors.hpp"
+#include "bhnsid/core/plugin.hpp"
+#include "hierarchy.hpp"
+#include "uniform_grid.hpp"
+
+namespace bhnsid::grid {
+namespace {
+
+using core::Bin;
+using core::Context;
+
+struct State {
+  std::shared_ptr<UniformGrid> grid;
+};
+
+HierarchySpec spec_from(const core::ParamSection& p) {
+  HierarchySpec s;
+  s.n = static_cast<int>(p.integer("n"));
+  s.dx = p.real("dx");
+  s.symmetry = p.string("symmetry") == "equatorial" ? Symmetry::equatorial : Symmetry::none;
+  s.max_levels = static_cast<int>(p.integer("max_levels"));
+  s.min_coarse_intervals = static_cast<int>(p.integer("min_coarse_intervals"));
+  return s;
+}
+
+void declare(core::PluginBuilder& b) {
+  auto state = std::make_shared<State>();
+  b.implements("grid");
+
+  b.integer("n")
+      .doc("intervals per side of the cube (n + 1 points); even, so that the origin and the axes are grid points")
+      .default_value(std::int64_t{64})
+      .at_least(2)
+      .at_most(4096);
+  b.real("dx").doc("grid spacing (hatted units); the cube is [-n dx/2, n dx/2]^3").default_value(0.06).greater_than(0);
+  b.keyword("symmetry", {"none", "equatorial"})
+      .doc("equatorial: store and compute z >= 0 only, parities from the fields' tensor kinds")
+      .default_value(std::string("equatorial"));
+  b.integer("max_levels")
+      .doc("most levels in the hierarchy, finest included; 0: coarsen by 2 as long as the rule allows")
+      .default_value(std::int64_t{0})
+      .at_least(0);
+  b.integer("min_coarse_intervals")
+      .doc("stop coarsening before a level would have fewer intervals per side than this")
+      .default_value(std::int64_t{4})
+      .at_least(2);
+
+  b.schedule(Bin::startup, "create", [state](Context& ctx) {
+     const HierarchySpec spec = spec_from(ctx.params());
+     auto levels = build_hierarchy(spec);
+     for (const Level& lv : levels)
+       ctx.log().info("level {}: n = {:4d}, dx = {:.6g}, {} x {} x {} points{}", lv.index, lv.n, lv.dx, lv.nx, lv.ny,
+                      lv.nz, lv.z_symmetry ? " (z >= 0)" : "");
+     state->grid = std::make_shared<UniformGrid>(std::move(levels), spec.symmetry);
+     ctx.publish<Grid>("grid", state->grid);
+   }).doc("build the level hierarchy and publish the grid service");
+
+  b.schedule(Bin::terminate, "report_memory", [state](Context& ctx) {
+     if (state->grid) ctx.log().info("{:.1f} MiB in grid fields and masks", state->grid->bytes_allocated() / 1048576.0);
+   }).doc("memory held by fields");
+}
+
+}  // namespace
+}  // namespace bhnsid::grid
+
+extern "C" BHNSID_EXPORT const BhnsidPluginInfo* bhnsid_plugin_info() {
+  static const BhnsidPluginInfo info{BHNSID_ABI_VERSION, "grid", "1.0",
+                                     "uniform vertex-centred Cartesian grid with a coarsening hierarchy",
+                                     &bhnsid::grid::declare};
+  return &info;
+}
