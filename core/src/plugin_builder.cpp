@@ -98,6 +98,17 @@ bool is_identifier(const std::string& s) {
     return std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_';
   });
 }
+
+// Capabilities may be grouped by dots ("equation.hamiltonian"), each part an identifier.
+bool is_capability_name(const std::string& s) {
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t dot = s.find('.', start);
+    if (!is_identifier(s.substr(start, dot == std::string::npos ? std::string::npos : dot - start))) return false;
+    if (dot == std::string::npos) return true;
+    start = dot + 1;
+  }
+}
 }  // namespace
 
 void validate_declaration(const PluginDecl& decl) {
@@ -131,9 +142,9 @@ void validate_declaration(const PluginDecl& decl) {
     if (e.bin == Bin::check ? !e.check : !e.fn) fail(fmt::format("schedule entry '{}' without a function", e.name));
   }
   for (const auto& c : decl.implements)
-    if (!is_identifier(c)) fail(fmt::format("a capability named '{}'", c));
+    if (!is_capability_name(c)) fail(fmt::format("a capability named '{}'", c));
   for (const auto& c : decl.requires_caps)
-    if (!is_identifier(c)) fail(fmt::format("a required capability named '{}'", c));
+    if (!is_capability_name(c)) fail(fmt::format("a required capability named '{}'", c));
 }
 
 }  // namespace bhnsid::core

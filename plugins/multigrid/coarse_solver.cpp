@@ -1,0 +1,155 @@
+#include "coarse_solver.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "bhnsid/core/errors.hpp"
+#include "solver.hpp"
+
+namespace bhnsid::multigrid {
+
+double* CoarseSolver::value(const Unknown& x, int level, bool residual) {
+  const Slot& s = solver_.slots_[static_cast<std::size_t>(x.slot)];
+  return solver_.grid_.data(residual ? s.res : s.u, x.comp, level) + x.point;
+}
+
+void CoarseSolver::index_unknowns(int level) {
+  const Level& lv = solver_.grid_.level(level);
+  unknowns_.clear();
+  slot_offset_.clear();
+  std::size_t offset = 0;
+  for (std::size_t si = 0; si < solver_.slots_.size(); ++si) {
+    const Slot& s = solver_.slots_[si];
+    const std::uint8_t* fixed = s.mask >= 0 ? solver_.grid_.mask(s.mask, level) : nullptr;
+    slot_offset_.push_back(offset);
+    offset += static_cast<std::size_t>(s.ncomp) * lv.size;
+    for (int c = 0; c < s.ncomp; ++c)
+      for (int k = 0; k < lv.nz; ++k)
+        for (int j = 0; j < lv.ny; ++j)
+          for (int i = 0; i < lv.nx; ++i) {
+            const std::ptrdiff_t p = lv.at(i, j, k);
+            if (fixed && fixed[p]) continue;
+            if (lv.on_outer_face(i, j, k) && s.robin.empty()) continue;  // Dirichlet rows
+            unknowns_.push_back(Unknown{static_cast<int>(si), c, p, i, j, k});
+          }
+  }
+  row_of_.assign(offset, -1);
+  for (std::size_t r = 0; r < unknowns_.size(); ++r) {
+    const Unknown& x = unknowns_[r];
+    row_of_[slot_offset_[static_cast<std::size_t>(x.slot)] + static_cast<std::size_t>(x.comp) * lv.size +
+            static_cast<std::size_t>(x.point)] = static_cast<std::ptrdiff_t>(r);
+  }
+  level_ = level;
+  factorised_ = false;
+}
+
+void CoarseSolver::residual_vector(int level, Eigen::VectorXd& out) {
+  solver_.residual(level);
+  out.resize(static_cast<Eigen::Index>(unknowns_.size()));
+  for (std::size_t r = 0; r < unknowns_.size(); ++r) out[static_cast<Eigen::Index>(r)] = *value(unknowns_[r], level, true);
+}
+
+void CoarseSolver::factorise(int level, const Eigen::VectorXd& r0) {
+  const Level& lv = solver_.grid_.level(level);
+  const int last[3] = {lv.nx - 1, lv.ny - 1, lv.nz - 1};
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::VectorXd r1;
+  std::vector<double> step(unknowns_.size());
+  // Within a row's reach (interior: +-1 per axis; faces: the inward points 0..2), exactly one point
+  // of each residue class mod 3, which identifies the column a changed row belongs to.
+  auto window_start = [&](int index, int axis) {
+    const bool below_is_image = axis == 2 && lv.z_symmetry;
+    if (index == 0 && !below_is_image) return 0;
+    if (index == last[axis]) return last[axis] - 2;
+    return index - 1;
+  };
+  for (std::size_t si = 0; si < solver_.slots_.size(); ++si) {
+    const Slot& s = solver_.slots_[si];
+    for (int c = 0; c < s.ncomp; ++c)
+      for (int colour = 0; colour < 27; ++colour) {
+        const int ci = colour % 3, cj = (colour / 3) % 3, ck = colour / 9;
+        bool any = false;
+        for (std::size_t r = 0; r < unknowns_.size(); ++r) {
+          const Unknown& x = unknowns_[r];
+          if (x.slot != static_cast<int>(si) || x.comp != c || x.i % 3 != ci || x.j % 3 != cj || x.k % 3 != ck) continue;
+          double* u = value(x, level, false);
+          step[r] = 1e-7 * std::max(1.0, std::fabs(*u));
+          *u += step[r];
+          any = true;
+        }
+        if (!any) continue;
+        solver_.fill_ghosts(level, 0);
+        residual_vector(level, r1);
+        for (std::size_t r = 0; r < unknowns_.size(); ++r) {
+          const double d = r1[static_cast<Eigen::Index>(r)] - r0[static_cast<Eigen::Index>(r)];
+          if (d == 0) continue;
+          const Unknown& row = unknowns_[r];
+          const int idx[3] = {row.i, row.j, row.k};
+          const int want[3] = {ci, cj, ck};
+          int col_index[3];
+          for (int a = 0; a < 3; ++a) {
+            int v = window_start(idx[a], a);
+            while (((v % 3) + 3) % 3 != want[a]) ++v;
+            col_index[a] = v;
+          }
+          if (col_index[2] < 0 || col_index[2] > last[2] || col_index[0] > last[0] || col_index[1] > last[1]) continue;
+          const std::size_t key = slot_offset_[si] + static_cast<std::size_t>(c) * lv.size +
+                                  static_cast<std::size_t>(lv.at(col_index[0], col_index[1], col_index[2]));
+          const std::ptrdiff_t col = row_of_[key];
+          if (col < 0) continue;  // a held value: no unknown there
+          entries.emplace_back(static_cast<int>(r), static_cast<int>(col), d / step[static_cast<std::size_t>(col)]);
+        }
+        for (std::size_t r = 0; r < unknowns_.size(); ++r) {
+          const Unknown& x = unknowns_[r];
+          if (x.slot != static_cast<int>(si) || x.comp != c || x.i % 3 != ci || x.j % 3 != cj || x.k % 3 != ck) continue;
+          *value(x, level, false) -= step[r];
+        }
+        solver_.fill_ghosts(level, 0);
+      }
+  }
+  const auto n = static_cast<Eigen::Index>(unknowns_.size());
+  Eigen::SparseMatrix<double> jacobian(n, n);
+  jacobian.setFromTriplets(entries.begin(), entries.end());
+  jacobian.makeCompressed();
+  lu_.analyzePattern(jacobian);
+  lu_.factorize(jacobian);
+  if (lu_.info() != Eigen::Success)
+    throw core::RunFailure(fmt::format("multigrid: the coarsest level's Jacobian ({} unknowns) is singular: {}",
+                                       unknowns_.size(), lu_.lastErrorMessage()));
+  factorised_ = true;
+}
+
+void CoarseSolver::solve(int level) {
+  if (level != level_) index_unknowns(level);
+  solver_.fill_ghosts(level, 0);
+  Eigen::VectorXd r;
+  residual_vector(level, r);
+  double norm = r.lpNorm<Eigen::Infinity>();
+  // Round-off floor of a residual made of differences of u over h^2.
+  double umax = 0;
+  for (const Unknown& x : unknowns_) umax = std::max(umax, std::fabs(*value(x, level, false)));
+  const double h = solver_.grid_.level(level).dx;
+  const double floor = 1e-13 * umax / (h * h) + 1e-14 * norm;
+  for (int iteration = 0; iteration < 20 && norm > floor; ++iteration) {
+    const bool fresh = !factorised_;
+    if (fresh) factorise(level, r);
+    // The residual is rhs - L(u), so J_r = -dL/du and the Newton step solves J_r du = -r.
+    const Eigen::VectorXd du = lu_.solve(-r);
+    for (std::size_t k = 0; k < unknowns_.size(); ++k) *value(unknowns_[k], level, false) += du[static_cast<Eigen::Index>(k)];
+    solver_.fill_ghosts(level, 0);
+    residual_vector(level, r);
+    const double next = r.lpNorm<Eigen::Infinity>();
+    if (!std::isfinite(next))
+      throw core::RunFailure("multigrid: the coarsest-level Newton solve produced a non-finite residual");
+    const double ratio = next / norm;
+    norm = next;
+    if (ratio > 0.5) {
+      if (fresh) break;     // a fresh Jacobian that gains nothing: nothing left above round-off
+      factorised_ = false;  // a stale one: rebuild at the current state
+    }
+  }
+}
+
+}  // namespace bhnsid::multigrid

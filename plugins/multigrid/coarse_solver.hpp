@@ -1,0 +1,40 @@
+#pragma once
+// The coarsest level solved directly: Newton's method on all equations at once, with the Jacobian
+// of the discrete residual built by finite-difference probing (27 colours: points 3 apart in every
+// direction never share a row, since no row reaches further than 2 points) and factorised by
+// Eigen's SparseLU. The factorisation is kept and reused (a chord iteration) while it still
+// converges fast; the problem is tiny, so every solve ends at round-off.
+#include <Eigen/SparseLU>
+#include <cstddef>
+#include <vector>
+
+namespace bhnsid::multigrid {
+
+class FasSolver;
+
+class CoarseSolver {
+ public:
+  explicit CoarseSolver(FasSolver& solver) : solver_(solver) {}
+  void solve(int level);
+
+ private:
+  struct Unknown {
+    int slot, comp;
+    std::ptrdiff_t point;
+    int i, j, k;
+  };
+  void index_unknowns(int level);
+  void residual_vector(int level, Eigen::VectorXd& out);
+  void factorise(int level, const Eigen::VectorXd& r0);
+  double* value(const Unknown& x, int level, bool residual);
+
+  FasSolver& solver_;
+  int level_ = -1;
+  std::vector<Unknown> unknowns_;
+  std::vector<std::ptrdiff_t> row_of_;  // per (slot, comp, point) -> row, -1 if held
+  std::vector<std::size_t> slot_offset_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
+  bool factorised_ = false;
+};
+
+}  // namespace bhnsid::multigrid

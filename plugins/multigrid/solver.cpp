@@ -1,0 +1,381 @@
+#include "solver.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <set>
+
+#include "bhnsid/core/errors.hpp"
+#include "bhnsid/interfaces/stencil.hpp"
+#include "coarse_solver.hpp"
+#include "transfer.hpp"
+
+namespace bhnsid::multigrid {
+
+using core::RunFailure;
+
+namespace {
+
+enum Which { unknowns, residuals };
+
+}  // namespace
+
+FasSolver::FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations, Settings settings, core::Log log)
+    : grid_(grid), settings_(settings), log_(std::move(log)) {
+  if (equations.empty()) throw RunFailure("multigrid: no elliptic equation is registered (no equation.* service)");
+  std::set<std::string> unknowns_seen;
+  for (EllipticEquation* eq : equations) {
+    Slot s;
+    s.eq = eq;
+    s.name = eq->name();
+    const std::string unknown = eq->unknown();
+    if (!unknowns_seen.insert(unknown).second)
+      throw RunFailure(fmt::format("multigrid: two equations solve for the same field '{}'", unknown));
+    s.u = grid.field_id(unknown);
+    const FieldInfo& info = grid.field_info(s.u);
+    if (info.storage != core::Storage::all_levels)
+      throw RunFailure(fmt::format("multigrid: the unknown '{}' of equation '{}' must be stored on all levels", unknown,
+                                   s.name));
+    s.ncomp = static_cast<int>(info.components.size());
+    s.parity = info.parity;
+    const core::TimeParity tp = info.parity[0].y == core::reflection_parity(info.components[0], 1)
+                                    ? core::TimeParity::even
+                                    : core::TimeParity::odd;
+    s.rhs = grid.add_field("multigrid." + unknown + ".rhs", info.components, tp);
+    s.res = grid.add_field("multigrid." + unknown + ".res", info.components, tp);
+    s.old = grid.add_field("multigrid." + unknown + ".old", info.components, tp);
+    s.boundary = eq->boundary();
+    if (s.boundary.kind == OuterBoundary::Kind::robin) {
+      if (s.boundary.u_inf.size() != static_cast<std::size_t>(s.ncomp))
+        throw RunFailure(fmt::format("multigrid: equation '{}' gives {} asymptotic values for {} components", s.name,
+                                     s.boundary.u_inf.size(), s.ncomp));
+      for (int c = 0; c < s.ncomp; ++c) s.robin.push_back(RobinRow{s.boundary.u_inf[static_cast<std::size_t>(c)], s.boundary.centre});
+      for (int l = 0; l < grid.num_levels(); ++l) s.rays.push_back(robin_stencils(grid.level(l), s.boundary.centre));
+    }
+    if (const std::string mask = eq->excision_mask(); !mask.empty()) s.mask = grid.mask_id(mask);
+    for (const std::string& name : eq->coefficients()) s.coefficients.push_back(grid.field_id(name));
+    slots_.push_back(std::move(s));
+  }
+  const int levels = grid.num_levels();
+  rhs_zero_.assign(static_cast<std::size_t>(levels), 1);
+  tau_.assign(slots_.size(), 0.0);
+  rhs_ptrs_.resize(slots_.size());
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    rhs_ptrs_[s].resize(static_cast<std::size_t>(levels));
+    for (int l = 0; l < levels; ++l)
+      for (int c = 0; c < slots_[s].ncomp; ++c) rhs_ptrs_[s][static_cast<std::size_t>(l)].push_back(grid.data(slots_[s].rhs, c, l));
+  }
+  coarse_ = std::make_unique<CoarseSolver>(*this);
+}
+
+FasSolver::~FasSolver() = default;
+
+RelaxArgs FasSolver::args(const Slot& s, int l) const {
+  const std::size_t index = static_cast<std::size_t>(&s - slots_.data());
+  RelaxArgs a;
+  a.level = l;
+  a.rhs = rhs_zero_[static_cast<std::size_t>(l)] ? nullptr : rhs_ptrs_[index][static_cast<std::size_t>(l)].data();
+  a.fixed = s.mask >= 0 ? grid_.mask(s.mask, l) : nullptr;
+  a.omega = settings_.omega;
+  return a;
+}
+
+void FasSolver::fill_ghosts(int l, int which) {
+  if (!grid_.level(l).z_symmetry) return;
+  for (const Slot& s : slots_) grid_.fill_ghosts(which == unknowns ? s.u : s.res, l);
+}
+
+void FasSolver::smooth(int l, int sweeps) {
+  const Level& lv = grid_.level(l);
+  const auto start = std::chrono::steady_clock::now();
+  auto boundary_rows = [&] {
+    bool any_robin = false;
+    for (const Slot& s : slots_) {
+      if (s.robin.empty()) continue;
+      any_robin = true;
+      const RelaxArgs a = args(s, l);
+      for (int c = 0; c < s.ncomp; ++c)
+        robin_relax(s.rays[static_cast<std::size_t>(l)], s.robin[static_cast<std::size_t>(c)].u_inf, grid_.data(s.u, c, l),
+                    a.rhs ? a.rhs[c] : nullptr, a.fixed);
+    }
+    if (any_robin) fill_ghosts(l, unknowns);
+  };
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    for (const Slot& s : slots_) {
+      s.eq->relax(args(s, l));
+      if (lv.z_symmetry) grid_.fill_ghosts(s.u, l);
+    }
+    boundary_rows();
+  }
+  if (l == 0 && sweeps > 0) {
+    report_.fine_sweep_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report_.fine_sweeps += sweeps;
+  }
+}
+
+void FasSolver::residual(int l) {
+  const Level& lv = grid_.level(l);
+  for (const Slot& s : slots_) {
+    std::vector<double*> out;
+    for (int c = 0; c < s.ncomp; ++c) out.push_back(grid_.data(s.res, c, l));
+    const RelaxArgs a = args(s, l);
+    s.eq->residual(a, out.data());
+    for (int c = 0; c < s.ncomp; ++c) {
+      const double* rhs = a.rhs ? a.rhs[c] : nullptr;
+      if (s.robin.empty())
+        zero_faces(lv, out[static_cast<std::size_t>(c)]);
+      else
+        robin_residual(s.rays[static_cast<std::size_t>(l)], s.robin[static_cast<std::size_t>(c)].u_inf,
+                       grid_.data(s.u, c, l), rhs, a.fixed, out[static_cast<std::size_t>(c)]);
+    }
+  }
+  fill_ghosts(l, residuals);
+}
+
+void FasSolver::descend(int l) {
+  const int cl = l + 1;
+  const Level& fine = grid_.level(l);
+  const Level& coarse = grid_.level(cl);
+  for (const Slot& s : slots_)
+    for (int c = 0; c < s.ncomp; ++c) {
+      restrict_injection(fine, coarse, grid_.data(s.u, c, l), grid_.data(s.u, c, cl));
+      std::memcpy(grid_.data(s.old, c, cl), grid_.data(s.u, c, cl), coarse.size * sizeof(double));
+    }
+  fill_ghosts(cl, unknowns);
+  for (std::size_t si = 0; si < slots_.size(); ++si) {
+    const Slot& s = slots_[si];
+    // -L(u_H) into the coarse residual array, which serves as scratch here.
+    std::vector<double*> minus_lu;
+    for (int c = 0; c < s.ncomp; ++c) minus_lu.push_back(grid_.data(s.res, c, cl));
+    RelaxArgs a = args(s, cl);
+    a.rhs = nullptr;
+    s.eq->residual(a, minus_lu.data());
+    const std::uint8_t* fixed = a.fixed;
+    for (int c = 0; c < s.ncomp; ++c) {
+      double* f = grid_.data(s.rhs, c, cl);
+      const double* r = grid_.data(s.res, c, l);
+      // rhs_H = L_H(u_H) + FW(r_h): the FAS right-hand side.
+      restrict_full_weighting_minus(fine, coarse, r, minus_lu[static_cast<std::size_t>(c)], f, !s.robin.empty());
+      if (!s.robin.empty()) {
+        // Boundary rows: rhs = B(u_H) + injected fine residual; robin_residual with no rhs gives -B.
+        robin_residual(s.rays[static_cast<std::size_t>(cl)], s.robin[static_cast<std::size_t>(c)].u_inf,
+                       grid_.data(s.u, c, cl), nullptr, fixed, f);
+        for_face_points(coarse, [&](int i, int j, int k) {
+          const std::ptrdiff_t p = coarse.at(i, j, k);
+          f[p] = r[fine.at(2 * i, 2 * j, 2 * k)] - f[p];
+        });
+      }
+    }
+    // With a zero fine right-hand side the coarse one is the relative truncation error tau_h^2h.
+    if (l == 0 && rhs_zero_[0]) tau_[si] = rms_interior(s, s.rhs, cl);
+  }
+  rhs_zero_[static_cast<std::size_t>(cl)] = 0;
+}
+
+void FasSolver::correct(int l) {
+  const int cl = l + 1;
+  for (const Slot& s : slots_) {
+    const std::uint8_t* fixed = s.mask >= 0 ? grid_.mask(s.mask, l) : nullptr;
+    for (int c = 0; c < s.ncomp; ++c)
+      prolong_correction(grid_.level(cl), grid_.level(l), grid_.data(s.u, c, cl), grid_.data(s.old, c, cl),
+                         grid_.data(s.u, c, l), fixed, !s.robin.empty());
+  }
+  fill_ghosts(l, unknowns);
+}
+
+void FasSolver::cycle(int l, CycleType type) {
+  const int coarsest = grid_.num_levels() - 1;
+  if (l == coarsest) {
+    coarse_->solve(l);
+    return;
+  }
+  smooth(l, settings_.pre_sweeps);
+  residual(l);
+  descend(l);
+  if (type == CycleType::v || l + 1 == coarsest) {
+    cycle(l + 1, type);
+  } else if (type == CycleType::w) {
+    cycle(l + 1, CycleType::w);
+    cycle(l + 1, CycleType::w);
+  } else {
+    cycle(l + 1, CycleType::f);
+    cycle(l + 1, CycleType::v);
+  }
+  correct(l);
+  smooth(l, settings_.post_sweeps);
+}
+
+void FasSolver::prepare() {
+  const int levels = grid_.num_levels();
+  std::set<int> coefficients;
+  for (const Slot& s : slots_) coefficients.insert(s.coefficients.begin(), s.coefficients.end());
+  for (int field : coefficients) {
+    const int ncomp = static_cast<int>(grid_.field_info(field).components.size());
+    for (int l = 0; l + 1 < levels; ++l)
+      for (int c = 0; c < ncomp; ++c)
+        restrict_full_weighting(grid_.level(l), grid_.level(l + 1), grid_.data(field, c, l), grid_.data(field, c, l + 1));
+    for (int l = 0; l < levels; ++l) grid_.fill_ghosts(field, l);
+  }
+  // Every level starts from the injected fine state: Dirichlet faces and held points keep the
+  // finest level's values, and `old` records the start for the FMG correction.
+  for (int l = 0; l < levels; ++l) {
+    if (l > 0)
+      for (const Slot& s : slots_)
+        for (int c = 0; c < s.ncomp; ++c) {
+          restrict_injection(grid_.level(l - 1), grid_.level(l), grid_.data(s.u, c, l - 1), grid_.data(s.u, c, l));
+          std::memcpy(grid_.data(s.old, c, l), grid_.data(s.u, c, l), grid_.level(l).size * sizeof(double));
+        }
+    fill_ghosts(l, unknowns);
+  }
+  std::fill(rhs_zero_.begin(), rhs_zero_.end(), 1);
+}
+
+double FasSolver::rms_interior(const Slot& s, int field, int l) const {
+  const Level& lv = grid_.level(l);
+  const std::uint8_t* fixed = s.mask >= 0 ? grid_.mask(s.mask, l) : nullptr;
+  double sum = 0, count = 0;
+  for (int c = 0; c < s.ncomp; ++c) {
+    const double* v = grid_.data(field, c, l);
+#pragma omp parallel for reduction(+ : sum, count) schedule(static)
+    for (int k = lv.k_begin(); k < lv.nz - 1; ++k)
+      for (int j = 1; j < lv.ny - 1; ++j) {
+        const std::ptrdiff_t p = lv.at(0, j, k);
+        for (int i = 1; i < lv.nx - 1; ++i) {
+          if (fixed && fixed[p + i]) continue;
+          sum += v[p + i] * v[p + i];
+          count += 1;
+        }
+      }
+  }
+  sum = grid_.global_sum(sum);
+  count = grid_.global_sum(count);
+  return count > 0 ? std::sqrt(sum / count) : 0.0;
+}
+
+void FasSolver::fail_nonfinite(int cycle_number) const {
+  const Level& lv = grid_.finest();
+  for (const Slot& s : slots_)
+    for (int which : {s.u, s.res})
+      for (int c = 0; c < s.ncomp; ++c) {
+        const double* v = grid_.data(which, c, 0);
+        for (int k = 0; k < lv.nz; ++k)
+          for (int j = 0; j < lv.ny; ++j)
+            for (int i = 0; i < lv.nx; ++i)
+              if (!std::isfinite(v[lv.at(i, j, k)]))
+                throw RunFailure(fmt::format(
+                    "multigrid: {} of equation '{}' (component {}) is {} at point ({}, {}, {}) = ({:.6g}, {:.6g}, "
+                    "{:.6g}) after cycle {}",
+                    which == s.u ? "the solution" : "the residual", s.name, c, v[lv.at(i, j, k)], i, j, k, lv.x(i),
+                    lv.y(j), lv.z(k), cycle_number));
+      }
+  throw RunFailure(fmt::format("multigrid: a residual norm is not finite after cycle {}", cycle_number));
+}
+
+SolveReport FasSolver::solve() {
+  using clock = std::chrono::steady_clock;
+  report_ = SolveReport{};
+  SolveReport& report = report_;
+  const auto solve_start = clock::now();
+  // The report is complete whenever solve() leaves, by return or by exception.
+  struct Finish {
+    SolveReport& r;
+    clock::time_point t0;
+    ~Finish() {
+      r.seconds = std::chrono::duration<double>(clock::now() - t0).count();
+      if (r.fine_sweeps > 0 && r.fine_sweep_seconds > 0) r.fine_sweep_seconds /= r.fine_sweeps;
+    }
+  } finish{report, solve_start};
+  for (const Slot& s : slots_) report.equations.push_back(s.name);
+  const int coarsest = grid_.num_levels() - 1;
+  auto start = clock::now();
+  prepare();
+  if (settings_.fmg || coarsest == 0) {
+    coarse_->solve(coarsest);
+    for (int l = coarsest - 1; l >= 0; --l) {
+      correct(l);
+      for (int c = 0; c < settings_.fmg_cycles; ++c) {
+        rhs_zero_[static_cast<std::size_t>(l)] = 1;
+        cycle(l, settings_.cycle);
+      }
+    }
+  }
+  rhs_zero_[0] = 1;
+
+  auto measure = [&](int number) {
+    residual(0);
+    CycleRecord rec;
+    rec.cycle = number;
+    for (const Slot& s : slots_) rec.residual.push_back(rms_interior(s, s.res, 0));
+    rec.tau = tau_;
+    rec.seconds = std::chrono::duration<double>(clock::now() - start).count();
+    for (double r : rec.residual)
+      if (!std::isfinite(r)) fail_nonfinite(number);
+    return rec;
+  };
+  auto describe = [&](const CycleRecord& rec) {
+    std::string line = rec.cycle == 0 ? std::string(settings_.fmg ? "after FMG" : "start") : fmt::format("cycle {:2d}", rec.cycle);
+    for (std::size_t s = 0; s < slots_.size(); ++s) {
+      line += fmt::format(":  {} |r| {:.3e}", slots_[s].name, rec.residual[s]);
+      if (rec.tau[s] > 0) line += fmt::format(" |tau| {:.3e} (r/tau {:.2e})", rec.tau[s], rec.residual[s] / rec.tau[s]);
+    }
+    if (rec.cycle > 0) line += fmt::format(", factor {:.3f}", rec.factor);
+    return line + fmt::format(", {:.3f} s", rec.seconds);
+  };
+
+  report.history.push_back(measure(0));
+  log_.info(describe(report.history.back()));
+  if (coarsest == 0) {  // one level: the direct solve is the whole solve
+    report.converged = true;
+    report.message = "single level solved directly";
+    return report;
+  }
+  const std::vector<double> first = report.history.back().residual;
+  int stalled = 0;
+  double log_factor_sum = 0;
+  for (int number = 1; number <= settings_.max_cycles; ++number) {
+    start = clock::now();
+    cycle(0, settings_.cycle);
+    CycleRecord rec = measure(number);
+    const std::vector<double>& before = report.history.back().residual;
+    for (std::size_t s = 0; s < slots_.size(); ++s)
+      rec.factor = std::max(rec.factor, before[s] > 0 ? rec.residual[s] / before[s] : 0.0);
+    report.history.push_back(rec);
+    report.cycles = number;
+    log_.info(describe(rec));
+    log_factor_sum += std::log(std::max(rec.factor, 1e-300));
+    report.mean_factor = std::exp(log_factor_sum / number);
+
+    bool converged = number >= settings_.min_cycles;
+    for (std::size_t s = 0; s < slots_.size(); ++s) {
+      const double r = rec.residual[s];
+      const bool small = r <= settings_.tau_factor * rec.tau[s] || r <= settings_.abs_tolerance || r == 0;
+      converged = converged && small;
+      if (r > settings_.divergence_factor * std::max(first[s], 1e-300))
+        throw RunFailure(fmt::format("multigrid: equation '{}' diverges: |r| = {:.3e} after cycle {}, {:.3e} at the start",
+                                     slots_[s].name, r, number, first[s]));
+    }
+    if (converged) {
+      report.converged = true;
+      report.message = fmt::format("converged in {} cycles, mean factor {:.3f}", number, report.mean_factor);
+      return report;
+    }
+    stalled = rec.factor > settings_.stall_factor ? stalled + 1 : 0;
+    if (stalled >= settings_.stall_cycles) {
+      std::size_t worst = 0;
+      for (std::size_t s = 0; s < slots_.size(); ++s)
+        if (rec.residual[s] / std::max(before[s], 1e-300) >= rec.factor) worst = s;
+      throw RunFailure(fmt::format(
+          "multigrid: stagnated: equation '{}' reduced its residual by less than a factor {} in {} cycles in a row "
+          "(|r| = {:.3e}, |tau| = {:.3e}, target r/tau = {:.1e})",
+          slots_[worst].name, settings_.stall_factor, settings_.stall_cycles, rec.residual[worst], rec.tau[worst],
+          settings_.tau_factor));
+    }
+  }
+  throw RunFailure(fmt::format("multigrid: not converged in multigrid.max_cycles = {} cycles ({})", settings_.max_cycles,
+                               describe(report.history.back())));
+}
+
+}  // namespace bhnsid::multigrid

@@ -1,0 +1,112 @@
+#pragma once
+// The FAS multigrid solver for every registered EllipticEquation at once: FMG start, V, W or F
+// cycles of red-black nonlinear Gauss-Seidel, full-weighting restriction of residuals and
+// coefficients, injection of the solution, trilinear prolongation of corrections, a direct Newton
+// solve on the coarsest level, and a monitor that stops at a fraction of the truncation error.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bhnsid/core/log.hpp"
+#include "bhnsid/interfaces/elliptic.hpp"
+#include "bhnsid/interfaces/grid.hpp"
+#include "boundary_rows.hpp"
+
+namespace bhnsid::multigrid {
+
+enum class CycleType { v, w, f };
+
+struct Settings {
+  CycleType cycle = CycleType::v;
+  int pre_sweeps = 2, post_sweeps = 1;
+  double omega = 1.15;           ///< over-relaxation of the point Newton steps
+  bool fmg = true;
+  int fmg_cycles = 1;
+  double tau_factor = 1e-3;      ///< converged when |r| <= tau_factor |tau| for every equation
+  double abs_tolerance = 0;      ///< ... or |r| <= abs_tolerance (0: off)
+  int max_cycles = 30;
+  double stall_factor = 0.95;    ///< a cycle reducing |r| by less than this counts as stalled
+  int stall_cycles = 3;          ///< that many stalled cycles in a row end the solve
+  double divergence_factor = 1e4;
+  int min_cycles = 1;            ///< cycles from the finest level after the FMG start
+};
+
+/// One finest-level cycle: rms residual and truncation-error estimate per equation.
+struct CycleRecord {
+  int cycle = 0;  ///< 0: the state after the FMG start
+  std::vector<double> residual, tau;
+  double factor = 0;  ///< worst equation's residual reduction in this cycle
+  double seconds = 0;
+};
+
+struct SolveReport {
+  bool converged = false;
+  int cycles = 0;
+  std::vector<std::string> equations;
+  std::vector<CycleRecord> history;
+  double mean_factor = 0;  ///< geometric mean of the per-cycle factors
+  double seconds = 0;      ///< the whole solve, FMG start included
+  /// Mean wall time of one full red-black sweep (both colours, every equation, boundary rows) on the
+  /// finest level: what the benchmark turns into memory bandwidth.
+  double fine_sweep_seconds = 0;
+  int fine_sweeps = 0;
+  std::string message;
+};
+
+/// Per equation: its service, fields and boundary rows.
+struct Slot {
+  EllipticEquation* eq = nullptr;
+  std::string name;
+  int u = -1, rhs = -1, res = -1, old = -1;
+  int ncomp = 1;
+  std::vector<Parity> parity;
+  OuterBoundary boundary;
+  std::vector<RobinRow> robin;                  // per component; empty for Dirichlet
+  std::vector<std::vector<RayStencil>> rays;    // per level: the Robin rows' stencils
+  int mask = -1;
+  std::vector<int> coefficients;
+};
+
+class CoarseSolver;
+
+class FasSolver {
+ public:
+  FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations, Settings settings, core::Log log);
+  ~FasSolver();
+
+  /// Solves to the stopping criterion; throws core::RunFailure on NaN, divergence, stagnation or
+  /// max_cycles, naming the equation and, for NaN, the point.
+  SolveReport solve();
+  const std::vector<Slot>& slots() const { return slots_; }
+  /// The history of the last solve, also after it failed.
+  const SolveReport& last_report() const { return report_; }
+
+ private:
+  friend class CoarseSolver;
+  void prepare();
+  void cycle(int l, CycleType type);
+  void smooth(int l, int sweeps);
+  /// res = rhs - L(u) on level l (interior and boundary rows; 0 where held).
+  void residual(int l);
+  /// From level l to l+1: u and old by injection, rhs = L(u) + FW(res). Returns nothing; when l = 0
+  /// the truncation-error norms are taken from the new rhs.
+  void descend(int l);
+  void correct(int l);
+  void fill_ghosts(int l, int which);
+  double rms_interior(const Slot& s, int field, int l) const;
+  [[noreturn]] void fail_nonfinite(int cycle_number) const;
+  RelaxArgs args(const Slot& s, int l) const;
+
+  Grid& grid_;
+  Settings settings_;
+  core::Log log_;
+  std::vector<Slot> slots_;
+  std::vector<char> rhs_zero_;  // per level: the right-hand side is identically zero
+  std::vector<double> tau_;     // per equation, from the last descent from the finest level
+  std::unique_ptr<CoarseSolver> coarse_;
+  SolveReport report_;
+  // Pointer tables handed to the equations: [slot][level][component].
+  std::vector<std::vector<std::vector<const double*>>> rhs_ptrs_;
+};
+
+}  // namespace bhnsid::multigrid
