@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages bhnsid needs, and only those that are missing: `apt-get update`
 # runs once, and not at all when everything is already there. Safe to run any number of times.
+# `--bench` adds what the peer comparison (bench/compare_hypre.sh) needs: hypre and MPI.
 set -euo pipefail
 
 packages=(
@@ -11,6 +12,9 @@ packages=(
   clang libclang-rt-14-dev                           # make fuzz (libFuzzer)
   python3 python3-numpy python3-matplotlib           # validation plots
 )
+if [ "${1:-}" = "--bench" ]; then
+  packages+=(libhypre-dev libopenmpi-dev openmpi-bin)  # the hypre peer of bench/compare_hypre.sh
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -57,7 +57,14 @@ const char* to_string(TensorKind kind) {
   return "?";
 }
 
-const char* to_string(Storage storage) { return storage == Storage::all_levels ? "all levels" : "finest only"; }
+const char* to_string(Storage storage) {
+  switch (storage) {
+    case Storage::all_levels: return "all levels";
+    case Storage::finest_only: return "finest only";
+    case Storage::coarse_levels: return "coarse levels";
+  }
+  return "?";
+}
 
 int reflection_parity(TensorKind kind, int axis) {
   // Index counts along x, y, z for each kind.

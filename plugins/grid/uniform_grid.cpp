@@ -60,8 +60,9 @@ int UniformGrid::add_field(const std::string& name, const std::vector<core::Tens
   f.arrays.resize(components.size());
   for (auto& per_level : f.arrays) {
     per_level.resize(levels_.size());
-    const std::size_t count = storage == core::Storage::all_levels ? levels_.size() : 1;
-    for (std::size_t l = 0; l < count; ++l) {
+    const std::size_t first = storage == core::Storage::coarse_levels ? 1 : 0;
+    const std::size_t count = storage == core::Storage::finest_only ? 1 : levels_.size();
+    for (std::size_t l = first; l < count; ++l) {
       const std::size_t bytes = levels_[l].size * sizeof(double);
       per_level[l].reset(static_cast<double*>(allocate_zeroed(bytes)));
       bytes_ += bytes;
@@ -92,7 +93,9 @@ const double* UniformGrid::data(int id, int component, int level) const {
   if (component < 0 || component >= static_cast<int>(f.arrays.size()) || level < 0 || level >= num_levels())
     throw core::RunFailure(fmt::format("grid: field '{}' has no component {} on level {}", f.info.name, component, level));
   const double* p = f.arrays[static_cast<std::size_t>(component)][static_cast<std::size_t>(level)].get();
-  if (!p) throw core::RunFailure(fmt::format("grid: field '{}' is stored on the finest level only", f.info.name));
+  if (!p)
+    throw core::RunFailure(fmt::format("grid: field '{}' is not stored on level {} ({})", f.info.name, level,
+                                       core::to_string(f.info.storage)));
   return p;
 }
 

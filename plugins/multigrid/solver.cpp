@@ -44,9 +44,10 @@ FasSolver::FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations
     const core::TimeParity tp = info.parity[0].y == core::reflection_parity(info.components[0], 1)
                                     ? core::TimeParity::even
                                     : core::TimeParity::odd;
-    s.rhs = grid.add_field("multigrid." + unknown + ".rhs", info.components, tp);
+    // The finest level's right-hand side is zero and its start is never saved.
+    s.rhs = grid.add_field("multigrid." + unknown + ".rhs", info.components, tp, core::Storage::coarse_levels);
     s.res = grid.add_field("multigrid." + unknown + ".res", info.components, tp);
-    s.old = grid.add_field("multigrid." + unknown + ".old", info.components, tp);
+    s.old = grid.add_field("multigrid." + unknown + ".old", info.components, tp, core::Storage::coarse_levels);
     s.boundary = eq->boundary();
     if (s.boundary.kind == OuterBoundary::Kind::robin) {
       if (s.boundary.u_inf.size() != static_cast<std::size_t>(s.ncomp))
@@ -65,7 +66,7 @@ FasSolver::FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations
   rhs_ptrs_.resize(slots_.size());
   for (std::size_t s = 0; s < slots_.size(); ++s) {
     rhs_ptrs_[s].resize(static_cast<std::size_t>(levels));
-    for (int l = 0; l < levels; ++l)
+    for (int l = 1; l < levels; ++l)
       for (int c = 0; c < slots_[s].ncomp; ++c) rhs_ptrs_[s][static_cast<std::size_t>(l)].push_back(grid.data(slots_[s].rhs, c, l));
   }
   coarse_ = std::make_unique<CoarseSolver>(*this);

@@ -14,7 +14,9 @@ enum class TensorKind {
 /// Behaviour under time reversal: the shift, momenta and fluid velocity are odd (physics-notes §8).
 enum class TimeParity { even, odd };
 
-enum class Storage { all_levels, finest_only };
+/// Which levels of the multigrid hierarchy hold a variable: solver scratch such as FAS right-hand
+/// sides lives on the coarse levels only, diagnostics on the finest only.
+enum class Storage { all_levels, finest_only, coarse_levels };
 
 struct VariableSpec {
   std::string name;

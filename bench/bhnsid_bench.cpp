@@ -1,0 +1,150 @@
+// bhnsid-bench: performance of the production path, printed as one JSON line per case.
+//
+//   bhnsid-bench poisson --n N [--threads T] [--reps R]
+//
+// solves the hypre peer's problem (../shared/peers/src/problem.hpp: -Laplace u = f on the unit
+// cube, N^3 interior unknowns, h = 1/(N+1), homogeneous Dirichlet, u = g(x)g(y)g(z) with
+// g(t) = t(1-t)e^t) through the real plugins (grid, multigrid, mms) exactly as `bhnsid run` does,
+// to discretization error, and reports the best of R warm runs, setup included (plugin
+// configuration, allocation, source terms, solve, analysis).
+#include <CLI/CLI.hpp>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bhnsid/core/configuration.hpp"
+#include "bhnsid/core/errors.hpp"
+#include "bhnsid/core/parfile.hpp"
+#include "bhnsid/core/run.hpp"
+#include "bhnsid/core/yaml_tree.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// The run's own log goes to the terminal; the benchmark's only output is its JSON line.
+class Silence {
+ public:
+  Silence() {
+    std::fflush(stdout);
+    std::fflush(stderr);
+    saved_out_ = dup(1);
+    saved_err_ = dup(2);
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    close(null);
+  }
+  ~Silence() {
+    std::fflush(stdout);
+    std::fflush(stderr);
+    dup2(saved_out_, 1);
+    dup2(saved_err_, 2);
+    close(saved_out_);
+    close(saved_err_);
+  }
+
+ private:
+  int saved_out_, saved_err_;
+};
+
+struct Measured {
+  double seconds;
+  json summary;
+};
+
+Measured run_once(const std::string& parfile_text, const fs::path& directory) {
+  using namespace bhnsid::core;
+  PluginLoader loader(plugin_search_path({}));
+  ParFile file = parse_parfile(parse_yaml(parfile_text, "bhnsid-bench.yaml"));
+  RunResult result;
+  const auto start = std::chrono::steady_clock::now();
+  {
+    Silence quiet;
+    Configuration config = configure(std::move(file), {}, loader);
+    RunOptions options;
+    options.run_directory = directory;
+    options.force = true;
+    options.command_line = "bhnsid-bench";
+    result = run(config, options);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::ifstream in(directory / "summary.json");
+  json summary = json::parse(in);
+  if (result.exit_code != 0)
+    throw std::runtime_error("the benchmark run failed (status " + result.status + "); see " +
+                             (directory / "log.txt").string());
+  return {seconds, summary};
+}
+
+int poisson(int n, int threads, int reps, double tau_factor) {
+  if (n < 3 || ((n + 1) & n) != 0) {
+    std::cerr << "bhnsid-bench poisson: --n must be 2^k - 1 (vertex-centred multigrid: n + 1 intervals), got " << n
+              << "\n";
+    return 2;
+  }
+  std::ostringstream par;
+  par << "plugins: [grid, multigrid, mms]\n"
+      << "run:\n  threads: " << threads << "\n"
+      << "grid:\n  n: " << n + 1 << "\n  dx: " << 1.0 / (n + 1) << "\n  symmetry: none\n"
+      << "multigrid:\n  tau_factor: " << tau_factor << "\n"
+      << "mms:\n  problem: poisson\n";
+  const fs::path directory = fs::temp_directory_path() / ("bhnsid-bench-" + std::to_string(getpid()));
+  Measured best{1e300, {}};
+  for (int r = 0; r <= reps; ++r) {  // run 0 warms up (page cache, plugin loading)
+    Measured m = run_once(par.str(), directory);
+    if (r > 0 && m.seconds < best.seconds) best = m;
+  }
+  fs::remove_all(directory);
+  const json& s = best.summary["scalars"];
+  const double points = static_cast<double>(n) * n * n;
+  // A fused red-black sweep reads u and the source and writes u once per point (physics-free
+  // Poisson: no coefficient arrays besides the source): 24 bytes, the floor of BASELINES.md.
+  const double bytes_per_point_sweep = 24;
+  const double sweep_seconds = s.value("multigrid_fine_sweep_seconds", 0.0);
+  json out = {{"case", "poisson"},
+              {"n", n},
+              {"threads", threads},
+              {"seconds", best.seconds},
+              {"solve_seconds", s.value("multigrid_seconds", 0.0)},
+              {"cycles", s.value("multigrid_cycles", 0.0)},
+              {"factor", s.value("multigrid_factor", 0.0)},
+              {"max_error", s.value("error_max", 0.0)},
+              {"bytes_per_point_sweep", bytes_per_point_sweep},
+              {"sweep_seconds", sweep_seconds},
+              {"sweep_GBps", sweep_seconds > 0 ? bytes_per_point_sweep * points / sweep_seconds / 1e9 : 0.0}};
+  std::cout << out.dump() << std::endl;
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"bhnsid-bench: benchmarks of the production solver path, one JSON line per case"};
+  app.require_subcommand(1);
+  int n = 255, threads = 1, reps = 3;
+  double tau_factor = 0.05;
+  auto* p = app.add_subcommand("poisson", "the hypre peer's Poisson problem solved to discretization error");
+  p->add_option("--n", n, "interior points per axis, 2^k - 1 (the peer's N)")->required();
+  p->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  p->add_option("--reps", reps, "timed runs after one warm-up; the best is reported")->check(CLI::PositiveNumber);
+  p->add_option("--tau-factor", tau_factor,
+                "stop when |r| <= this * |tau|; 0.05 leaves max_error within 5% of the converged one");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    return poisson(n, threads, reps, tau_factor);
+  } catch (const std::exception& e) {
+    std::cerr << "bhnsid-bench: " << e.what() << "\n";
+    return 1;
+  }
+}

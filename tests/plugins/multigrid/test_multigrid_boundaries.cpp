@@ -1,0 +1,96 @@
+// Robin outer boundaries, equatorial symmetry against the full grid, and the failure paths.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "solve_runs.hpp"
+
+using namespace bhnsid::test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+using Settings = std::map<std::string, std::string>;
+
+Settings ball(int n, double half_width) {
+  char dx[64];
+  std::snprintf(dx, sizeof dx, "%.17g", 2 * half_width / n);
+  return {{"grid.n", std::to_string(n)}, {"grid.dx", dx}, {"grid.symmetry", "equatorial"}, {"mms.problem", "ball"},
+          {"multigrid.tau_factor", "1e-6"}};
+}
+
+}  // namespace
+
+TEST_CASE("plugins.multigrid.robin_ball_error_splits", "[plugins][multigrid]") {
+  // (d) Potential of a ball (mass 1, radius 0.5) centred at b = (0.1, 0, 0), Robin condition about
+  // the origin. The exterior is exactly -M/|x - b|; the condition is exact for its monopole and
+  // misses the dipole M b, whose correction inside the box is the harmonic M b x / (2 r_c^3),
+  // largest at the faces: M b / (2 r_c^2). So the error splits into an h^2 part and a boundary
+  // part falling like 1/r_c^2. Two spacings (h = 1/16, 1/32) on cubes of half-width r_c = 1 and
+  // 2: Richardson extrapolation at the common points of the x axis removes the h^2 part; the
+  // largest remainder falls by 4 when r_c doubles and is close to M b / (2 r_c^2).
+  TempDir dir;
+  const double h = 1.0 / 16;
+  double boundary_part[2];
+  for (int b = 0; b < 2; ++b) {
+    const double rc = b == 0 ? 1.0 : 2.0;
+    const int n = static_cast<int>(std::lround(2 * rc / h));
+    const SolveRun coarse = solve(dir, "ball_c" + std::to_string(b), ball(n, rc));
+    const SolveRun fine = solve(dir, "ball_f" + std::to_string(b), ball(2 * n, rc));
+    INFO(coarse.log << fine.log);
+    REQUIRE(coarse.exit_code == 0);
+    REQUIRE(fine.exit_code == 0);
+    REQUIRE(coarse.line.size() == static_cast<std::size_t>(n + 1));
+    boundary_part[b] = 0;
+    for (const auto& row : coarse.line) {
+      const double ec = row[1] - row[2], ef = fine.error_at(row[0]);
+      boundary_part[b] = std::max(boundary_part[b], std::fabs(ef - (ec - ef) / 3));
+    }
+  }
+  INFO("boundary part " << boundary_part[0] << " (r_c = 1), " << boundary_part[1] << " (r_c = 2); M b / (2 r_c^2) = "
+                        << 0.05 << ", " << 0.0125);
+  CHECK(boundary_part[0] / boundary_part[1] == Approx(4.0).margin(0.6));
+  CHECK(boundary_part[0] == Approx(0.05).epsilon(0.3));
+}
+
+TEST_CASE("plugins.multigrid.equatorial_symmetry_equals_full_grid", "[plugins][multigrid]") {
+  // (f) The vector problem (V^x, V^y even, V^z odd in z) solved to round-off on the full cube and on
+  // its z >= 0 half: the x-axis values agree to round-off, far below the error of either.
+  TempDir dir;
+  auto settings = [](const std::string& symmetry) {
+    return Settings{{"grid.n", "32"},          {"grid.dx", "0.0625"},     {"grid.symmetry", symmetry},
+                    {"mms.problem", "vector"}, {"multigrid.tau_factor", "1e-10"}, {"multigrid.max_cycles", "60"}};
+  };
+  const SolveRun full = solve(dir, "full", settings("none"));
+  const SolveRun half = solve(dir, "half", settings("equatorial"));
+  INFO(full.log << half.log);
+  REQUIRE(full.exit_code == 0);
+  REQUIRE(half.exit_code == 0);
+  REQUIRE(full.line.size() == half.line.size());
+  double diff = 0, scale = 0;
+  for (std::size_t i = 0; i < full.line.size(); ++i) {
+    diff = std::max(diff, std::fabs(full.line[i][1] - half.line[i][1]));
+    scale = std::max(scale, std::fabs(full.line[i][1]));
+  }
+  INFO("max |u_full - u_half| = " << diff << " of max |u| = " << scale << "; error_max " << full.scalar("error_max"));
+  CHECK(diff <= 1e-11 * scale);
+  CHECK(full.scalar("error_max") == Approx(half.scalar("error_max")).epsilon(1e-8));
+}
+
+TEST_CASE("plugins.multigrid.cycle_limit_fails_and_keeps_history", "[plugins][multigrid]") {
+  // A tolerance out of reach in one cycle: exit 1, status failed, the reason in summary.json, and
+  // multigrid_history.tsv still written (OUTPUT runs after a failed loop).
+  TempDir dir;
+  const SolveRun run = solve(dir, "limited", {{"grid.n", "16"}, {"grid.dx", "0.125"}, {"mms.problem", "nonlinear"},
+                                              {"multigrid.tau_factor", "1e-12"}, {"multigrid.max_cycles", "1"}});
+  INFO(run.log);
+  CHECK(run.exit_code == 1);
+  CHECK(run.summary["status"] == "failed");
+  CHECK_THAT(run.summary["message"].get<std::string>(), Contains("multigrid.max_cycles = 1"));
+  const std::string history = read_file(run.directory / "multigrid_history.tsv");
+  CHECK_THAT(history, Contains("residual_"));
+  CHECK(std::count(history.begin(), history.end(), '\n') == 3);  // header, after FMG, cycle 1
+}
