@@ -176,13 +176,14 @@ void FasSolver::descend(int l) {
   rhs_zero_[static_cast<std::size_t>(cl)] = 0;
 }
 
-void FasSolver::correct(int l) {
+void FasSolver::correct(int l, bool cubic) {
   const int cl = l + 1;
   for (const Slot& s : slots_) {
     const std::uint8_t* fixed = s.mask >= 0 ? grid_.mask(s.mask, l) : nullptr;
     for (int c = 0; c < s.ncomp; ++c)
-      prolong_correction(grid_.level(cl), grid_.level(l), grid_.data(s.u, c, cl), grid_.data(s.old, c, cl),
-                         grid_.data(s.u, c, l), fixed, !s.robin.empty());
+      (cubic ? prolong_correction_cubic : prolong_correction)(grid_.level(cl), grid_.level(l), grid_.data(s.u, c, cl),
+                                                              grid_.data(s.old, c, cl), grid_.data(s.u, c, l), fixed,
+                                                              !s.robin.empty());
   }
   fill_ghosts(l, unknowns);
 }
@@ -205,7 +206,7 @@ void FasSolver::cycle(int l, CycleType type) {
     cycle(l + 1, CycleType::f);
     cycle(l + 1, CycleType::v);
   }
-  correct(l);
+  correct(l, false);
   smooth(l, settings_.post_sweeps);
 }
 
@@ -296,7 +297,7 @@ SolveReport FasSolver::solve() {
   if (settings_.fmg || coarsest == 0) {
     coarse_->solve(coarsest);
     for (int l = coarsest - 1; l >= 0; --l) {
-      correct(l);
+      correct(l, true);
       for (int c = 0; c < settings_.fmg_cycles; ++c) {
         rhs_zero_[static_cast<std::size_t>(l)] = 1;
         cycle(l, settings_.cycle);

@@ -91,7 +91,8 @@ class FasSolver {
   /// From level l to l+1: u and old by injection, rhs = L(u) + FW(res). Returns nothing; when l = 0
   /// the truncation-error norms are taken from the new rhs.
   void descend(int l);
-  void correct(int l);
+  /// u_l += P(u_{l+1} - old_{l+1}); cubic P for the FMG step, trilinear in cycles.
+  void correct(int l, bool cubic);
   void fill_ghosts(int l, int which);
   double rms_interior(const Slot& s, int field, int l) const;
   [[noreturn]] void fail_nonfinite(int cycle_number) const;

@@ -28,3 +28,13 @@ void prolong_correction(const Level& coarse, const Level& fine, const double* c,
                         const std::uint8_t* fixed, bool faces);
 
 }  // namespace bhnsid::multigrid
+
+namespace bhnsid::multigrid {
+
+/// As prolong_correction, with cubic interpolation (weights -1/16, 9/16, 9/16, -1/16 along each
+/// axis at the midpoints; linear where the four coarse points do not exist). Used for the FMG
+/// step, where the interpolated solution must already be accurate to the discretization error.
+void prolong_correction_cubic(const Level& coarse, const Level& fine, const double* c, const double* c_old, double* f,
+                              const std::uint8_t* fixed, bool faces);
+
+}  // namespace bhnsid::multigrid
