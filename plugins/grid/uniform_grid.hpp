@@ -2,6 +2,7 @@
 // The serial grid: one uniform vertex-centred level per multigrid depth, fields as aligned plain
 // arrays, ghost points only on the symmetry plane, reductions that are the identity.
 #include <cstdlib>
+#include <deque>
 #include <map>
 #include <memory>
 #include <string>
@@ -17,8 +18,8 @@ struct FreeDeleter {
 using DoubleArray = std::unique_ptr<double[], FreeDeleter>;
 using ByteArray = std::unique_ptr<std::uint8_t[], FreeDeleter>;
 
-/// Zeroed array of `count` elements; large arrays are 2 MiB aligned so that the kernel can back
-/// them with huge pages (fewer TLB misses and page faults in the sweeps).
+/// Zeroed block of `bytes` bytes (never null), 64-byte aligned, or 2 MiB aligned from 2 MiB up so
+/// that the kernel can back it with huge pages (fewer TLB misses and page faults in the sweeps).
 void* allocate_zeroed(std::size_t bytes);
 
 class UniformGrid final : public Grid {
@@ -67,7 +68,7 @@ class UniformGrid final : public Grid {
 
   std::vector<Level> levels_;
   Symmetry symmetry_;
-  std::vector<Field> fields_;
+  std::deque<Field> fields_;  // a deque: references from field_info() survive add_field()
   std::map<std::string, int> field_ids_;
   std::vector<Mask> masks_;
   std::size_t bytes_ = 0;

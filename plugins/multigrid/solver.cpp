@@ -35,7 +35,7 @@ FasSolver::FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations
     if (!unknowns_seen.insert(unknown).second)
       throw RunFailure(fmt::format("multigrid: two equations solve for the same field '{}'", unknown));
     s.u = grid.field_id(unknown);
-    const FieldInfo& info = grid.field_info(s.u);
+    const FieldInfo info = grid.field_info(s.u);  // a copy: add_field below may move the original
     if (info.storage != core::Storage::all_levels)
       throw RunFailure(fmt::format("multigrid: the unknown '{}' of equation '{}' must be stored on all levels", unknown,
                                    s.name));
