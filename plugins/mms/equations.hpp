@@ -3,6 +3,7 @@
 // on the requested level and hands them to a kernel (kernels/); all loops live there.
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bhnsid/interfaces/elliptic.hpp"
@@ -21,7 +22,8 @@ struct EquationSpec {
 
 class EquationBase : public EllipticEquation {
  public:
-  EquationBase(Grid& grid, EquationSpec spec);
+  EquationBase(Grid& grid, EquationSpec spec)
+      : grid_(grid), spec_(std::move(spec)), u_(grid.field_id(spec_.unknown)), source_(grid.field_id(spec_.source)) {}
   std::string name() const override { return spec_.name; }
   std::string unknown() const override { return spec_.unknown; }
   OuterBoundary boundary() const override { return spec_.boundary; }

@@ -53,7 +53,7 @@ class Manufactured {
   std::string line_table() const;
 
  private:
-  /// Every stored point of the finest level to value_at(component, i, j, k, x); ghosts filled.
+  /// Every stored point of the finest level to value_at(component, i, j, k); ghosts filled.
   template <class Fn>
   void fill_finest(int field, Fn&& value_at);
 

@@ -68,7 +68,10 @@ void declare(core::PluginBuilder& b) {
       .doc("radius of a sphere whose points are held at the exact solution (excision); 0: none")
       .default_value(0.0)
       .at_least(0);
-  b.real_vector("excision_centre").doc("centre of the excision sphere").default_value(std::vector<double>{0, 0, 0}).length(3);
+  b.real_vector("excision_centre")
+      .doc("centre of the excision sphere")
+      .default_value(std::vector<double>{0, 0, 0})
+      .length(3);
   b.real("nonlinear_c")
       .doc("coefficient c of u^5 in the nonlinear problem (1/length^2); c > 0 is the Hamiltonian constraint's sign")
       .default_value(-1.0);
@@ -78,13 +81,21 @@ void declare(core::PluginBuilder& b) {
       .default_value(0.0)
       .at_least(0);
   b.real("ball_mass").doc("mass M of the ball problem (hatted units, G = 1)").default_value(1.0).greater_than(0);
-  b.real("ball_radius").doc("radius R of the ball; the ball must lie inside the cube").default_value(0.5).greater_than(0);
+  b.real("ball_radius")
+      .doc("radius R of the ball; the ball must lie inside the cube")
+      .default_value(0.5)
+      .greater_than(0);
   b.real_vector("ball_centre")
       .doc("centre b of the ball; off the origin so that the boundary sees a dipole (z = 0 with equatorial symmetry)")
       .default_value(std::vector<double>{0.1, 0, 0})
       .length(3);
-  b.real("coupled_a").doc("coefficient a of w in the coupled problem's first equation (1/length^2)").default_value(1.0);
-  b.real("coupled_b").doc("coefficient b of u^3 in the coupled problem's second equation (1/length^2)").default_value(-1.0);
+  b.real("coupled_a")
+      .doc("coefficient a of w in the coupled problem's first equation (1/length^2); a b < 0 keeps the "
+           "linearised pair invertible on any grid")
+      .default_value(1.0);
+  b.real("coupled_b")
+      .doc("coefficient b of u^3 in the coupled problem's second equation (1/length^2)")
+      .default_value(-1.0);
   b.real("initial_guess")
       .doc("starting value of the unknowns at points not on a Dirichlet face and not excised")
       .default_value(0.0);

@@ -32,7 +32,7 @@ constexpr Vec3 rotation_centre{-0.1, 0.2, 0.0};  // Omega = 1 / r_c, so |V_rot| 
 constexpr double rotation_width = 0.6;
 
 constexpr double coupled_u_amplitude = 0.4;
-constexpr Vec3 coupled_u_centre{0.2, 0.1, 0.0};
+constexpr Vec3 coupled_u_centre{0.2, 0.15, 0.0};
 constexpr double coupled_u_width = 0.5;
 constexpr double coupled_w_amplitude = 0.6;
 constexpr Vec3 coupled_w_centre{-0.1, -0.2, 0.0};
@@ -69,16 +69,19 @@ double Gaussian::laplacian(const Vec3& x) const {
 
 // ---- poisson
 
-double PoissonSolution::u(const Vec3& x) const {
+double PoissonSolution::factor(double x) const { return g((x + half_width) / (2 * half_width)); }
+
+// d^2/dx^2 = (1/L^2) d^2/dt^2 with L = 2 r_c.
+double PoissonSolution::factor_second(double x) const {
   const double L = 2 * half_width;
-  return g((x[0] + half_width) / L) * g((x[1] + half_width) / L) * g((x[2] + half_width) / L);
+  return g2((x + half_width) / L) / (L * L);
 }
 
+double PoissonSolution::u(const Vec3& x) const { return factor(x[0]) * factor(x[1]) * factor(x[2]); }
+
 double PoissonSolution::source(const Vec3& x) const {
-  const double L = 2 * half_width;
-  const double tx = (x[0] + half_width) / L, ty = (x[1] + half_width) / L, tz = (x[2] + half_width) / L;
-  // d^2/dx^2 = (1/L^2) d^2/dt^2 along each axis.
-  return -(g2(tx) * g(ty) * g(tz) + g(tx) * g2(ty) * g(tz) + g(tx) * g(ty) * g2(tz)) / (L * L);
+  const double fx = factor(x[0]), fy = factor(x[1]), fz = factor(x[2]);
+  return -(factor_second(x[0]) * fy * fz + fx * factor_second(x[1]) * fz + fx * fy * factor_second(x[2]));
 }
 
 // ---- nonlinear
@@ -117,9 +120,8 @@ VectorParts vector_parts(double rc, const Vec3& x) {
   const double wq2 = gq.width * gq.width, rq2 = dist2(x, gq.centre);
   const double rot_factor = 4 * rq2 / (wq2 * wq2) - 10 / wq2;
   const Vec3 rot{-omega_g * (x[1] - gq.centre[1]), omega_g * (x[0] - gq.centre[0]), 0.0};
-  for (int i = 0; i < 3; ++i) {
-    const double d = x[static_cast<std::size_t>(i)] - gp.centre[static_cast<std::size_t>(i)];
-    const std::size_t a = static_cast<std::size_t>(i);
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double d = x[a] - gp.centre[a];
     out.v[a] = -2 * d * phi / wp2 + rot[a];
     out.lap[a] = d * grad_lap + rot[a] * rot_factor;
     out.grad_div[a] = d * grad_lap;

@@ -33,6 +33,10 @@ struct PoissonSolution {
   double half_width = 0.5;
   double u(const Vec3& x) const;
   double source(const Vec3& x) const;
+  /// The one-dimensional factors: u = f(x) f(y) f(z), s = -(f''(x) f(y) f(z) + ...), with
+  /// f(x) = g(t(x)) and f''(x) = g''(t) / (2 r_c)^2.
+  double factor(double x) const;
+  double factor_second(double x) const;
 };
 
 /// u = 1 + A exp(-|x - p|^2 / w^2) for lap u + c u^5 + s = 0, s = -(lap u + c u^5).
@@ -100,6 +104,7 @@ class ExactSolution {
   double value(int unknown, int component, const Vec3& x) const;
   double source(int unknown, int component, const Vec3& x) const;
   const ProblemSpec& spec() const { return spec_; }
+  const PoissonSolution& poisson() const { return poisson_; }
 
  private:
   ProblemSpec spec_;

@@ -5,9 +5,6 @@
 
 namespace bhnsid::mms {
 
-EquationBase::EquationBase(Grid& grid, EquationSpec spec)
-    : grid_(grid), spec_(std::move(spec)), u_(grid.field_id(spec_.unknown)), source_(grid.field_id(spec_.source)) {}
-
 ScalarEquation::ScalarEquation(Grid& grid, EquationSpec spec, double c) : EquationBase(grid, std::move(spec)), c_(c) {}
 
 void ScalarEquation::residual(const RelaxArgs& args, double* const* out) const {
