@@ -31,6 +31,11 @@ inline int first_of_colour(int j, int k, int colour) { return 1 + ((1 + j + k + 
 ///   mirror():         with z symmetry, refresh the ghost plane k = -1 from plane 1; called after
 ///                     colour 0 on plane 1 and before colour 1 on plane 0.
 /// Levels too thin to give every thread 4 planes run the two colours as two plain passes.
+/// Only for stencils whose points of one colour read none of their own colour (7-point and
+/// other axis-only stencils): a mixed derivative reads diagonal neighbours, which share the
+/// colour, and the wavefront would race at slab boundaries (mms's vector kernel shows the
+/// alternative: each colour as two passes, even planes then odd). mirror() runs on one thread
+/// inside the parallel region; a decomposed grid whose ghost fill communicates needs another way.
 template <class PlaneFn, class MirrorFn>
 inline void red_black_sweep(const Level& lv, PlaneFn&& plane, MirrorFn&& mirror) {
   const int k0 = lv.k_begin(), k1 = lv.nz - 1, planes = k1 - k0;
