@@ -38,6 +38,7 @@ class UniformGrid final : public Grid {
   double* data(int field, int component, int level) override;
   const double* data(int field, int component, int level) const override;
 
+  using Grid::fill_ghosts;  // keep fill_ghosts(field, level) visible beside the override
   void fill_ghosts(double* values, Parity parity, int level) const override;
 
   int add_mask(const std::string& name, const ExcisionRegion& region) override;
