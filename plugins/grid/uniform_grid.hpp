@@ -12,8 +12,10 @@
 
 namespace bhnsid::grid {
 
+/// Returns a block from allocate_zeroed to where it came from.
+void release_block(void* p);
 struct FreeDeleter {
-  void operator()(void* p) const { std::free(p); }
+  void operator()(void* p) const { release_block(p); }
 };
 using DoubleArray = std::unique_ptr<double[], FreeDeleter>;
 using ByteArray = std::unique_ptr<std::uint8_t[], FreeDeleter>;

@@ -238,16 +238,26 @@ void FasSolver::prepare() {
 double FasSolver::rms_interior(const Slot& s, int field, int l) const {
   const Level& lv = grid_.level(l);
   const std::uint8_t* fixed = s.mask >= 0 ? grid_.mask(s.mask, l) : nullptr;
+  const int end = lv.nx - 1;
   double sum = 0, count = 0;
   for (int c = 0; c < s.ncomp; ++c) {
     const double* v = grid_.data(field, c, l);
 #pragma omp parallel for reduction(+ : sum, count) schedule(static)
     for (int k = lv.k_begin(); k < lv.nz - 1; ++k)
       for (int j = 1; j < lv.ny - 1; ++j) {
-        const std::ptrdiff_t p = lv.at(0, j, k);
-        for (int i = 1; i < lv.nx - 1; ++i) {
-          if (fixed && fixed[p + i]) continue;
-          sum += v[p + i] * v[p + i];
+        const double* row = v + lv.at(0, j, k);
+        if (!fixed) {
+          double line = 0;
+#pragma omp simd reduction(+ : line)
+          for (int i = 1; i < end; ++i) line += row[i] * row[i];
+          sum += line;
+          count += end - 1;
+          continue;
+        }
+        const std::uint8_t* held = fixed + lv.at(0, j, k);
+        for (int i = 1; i < end; ++i) {
+          if (held[i]) continue;
+          sum += row[i] * row[i];
           count += 1;
         }
       }
