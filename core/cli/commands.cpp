@@ -46,6 +46,7 @@ int cmd_run(const std::string& parfile, const CommonOptions& common, const std::
 int cmd_check(const std::string& parfile, const CommonOptions& common) {
   PluginLoader loader = make_loader(common);
   const Configuration config = configure(parfile, common.overrides, loader);
+  check_parameters(config);
   std::size_t entries = 0, params = 0;
   for (const auto& [bin, list] : config.schedule) entries += list.size();
   for (const auto& [name, section] : config.params) params += section.values().size();

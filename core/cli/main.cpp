@@ -35,7 +35,8 @@ int main(int argc, char** argv) {
                                                 core::build_git_revision(), core::build_type()));
   app.require_subcommand(1);
   const auto add_plugin_path = [&](CLI::App* sub) {
-    sub->add_option("--plugin-path", common.plugin_dirs, "extra plugin folder, searched after the build's and BHNSID_PLUGIN_PATH (repeatable)");
+    sub->add_option("--plugin-path", common.plugin_dirs, "extra plugin folder, searched after the build's and BHNSID_PLUGIN_PATH (repeatable)")
+        ->allow_extra_args(false);  // one folder per flag, so a following parameter file stays positional
   };
   std::string parfile, output;
   bool force = false, yaml = false;
@@ -43,19 +44,19 @@ int main(int argc, char** argv) {
 
   auto* run = app.add_subcommand("run", "validate, then run a parameter file and write its run directory");
   run->add_option("parfile", parfile, "parameter file (YAML)")->required();
-  run->add_option("--set", common.overrides, "override a parameter: section.key=value (repeatable)");
+  run->add_option("--set", common.overrides, "override a parameter: section.key=value (repeatable)")->allow_extra_args(false);
   run->add_option("--output", output, "run directory (default runs/<parfile stem>)");
   run->add_flag("--force", force, "replace an existing run directory");
   add_plugin_path(run);
 
   auto* check = app.add_subcommand("check", "validate a parameter file completely without running it (exit 0 or 2)");
   check->add_option("parfile", parfile, "parameter file (YAML)")->required();
-  check->add_option("--set", common.overrides, "override a parameter: section.key=value (repeatable)");
+  check->add_option("--set", common.overrides, "override a parameter: section.key=value (repeatable)")->allow_extra_args(false);
   add_plugin_path(check);
 
   auto* schedule = app.add_subcommand("schedule", "print the ordered schedule of a parameter file without running");
   schedule->add_option("parfile", parfile, "parameter file (YAML)")->required();
-  schedule->add_option("--set", common.overrides, "override a parameter: section.key=value (repeatable)");
+  schedule->add_option("--set", common.overrides, "override a parameter: section.key=value (repeatable)")->allow_extra_args(false);
   add_plugin_path(schedule);
 
   auto* params = app.add_subcommand("params", "print every parameter (type, default, range, doc) of plugins");

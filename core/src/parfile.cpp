@@ -59,7 +59,7 @@ void apply_override(ParFile& file, const std::string& assignment) {
   const auto eq = assignment.find('=');
   const auto dot = assignment.find('.');
   if (eq == std::string::npos || dot == std::string::npos || dot > eq || dot == 0 || dot + 1 == eq)
-    throw InputError(fmt::format("{}: expected section.key=value, e.g. --set grid.spacing=0.03", where));
+    throw InputError(fmt::format("{}: expected section.key=value, e.g. --set grid.dx=0.03", where));
   const std::string section = assignment.substr(0, dot);
   const std::string key = assignment.substr(dot + 1, eq - dot - 1);
   if (section == "plugins" || !is_name(section) || !is_name(key))

@@ -154,8 +154,31 @@ std::string summary_json(const RunState& state, const RunResult& result, const s
 
 }  // namespace
 
+void check_parameters(const Configuration& config) {
+  auto it = config.schedule.find(Bin::paramcheck);
+  if (it == config.schedule.end()) return;
+  RunState state(config);
+  for (const auto* entry : it->second) {
+    const PluginDecl* decl = nullptr;
+    for (const auto* d : config.decls)
+      if (d->name == entry->plugin) decl = d;
+    Context ctx(state, *decl);
+    // A parameter combination that cannot run is bad input, whoever finds it; the message
+    // names the file, and the plugin's message the key.
+    try {
+      entry->fn(ctx);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", config.file.source, e.what()));
+    } catch (const RunFailure& e) {
+      throw InputError(fmt::format("{}: {}: {}", config.file.source, entry->full_name(), e.what()));
+    }
+  }
+}
+
 RunResult run(const Configuration& config, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  // Cross-parameter checks before anything is written: bad input leaves no run directory.
+  check_parameters(config);
   prepare_run_directory(options.run_directory, options.force);
   RunState state(config);
   state.run_dir = options.run_directory;
@@ -186,7 +209,8 @@ RunResult run(const Configuration& config, const RunOptions& options) {
   RunResult result;
   result.status = "completed";
   bool ok = true;
-  for (Bin bin : {Bin::startup, Bin::paramcheck, Bin::setup, Bin::initial}) ok = ok && exec.run_bin(bin);
+  // PARAMCHECK ran in check_parameters() above.
+  for (Bin bin : {Bin::startup, Bin::setup, Bin::initial}) ok = ok && exec.run_bin(bin);
   const bool reached_loop = ok;
   if (ok && has_loop(config.schedule)) {
     const int max_iterations = static_cast<int>(run_params.integer("max_iterations"));

@@ -36,7 +36,7 @@ const char* to_string(Bin bin) {
 bool in_loop(Bin bin) { return bin == Bin::solve || bin == Bin::update || bin == Bin::check; }
 
 const std::vector<Bin>& all_bins() {
-  static const std::vector<Bin> bins{Bin::startup, Bin::paramcheck, Bin::setup,    Bin::initial, Bin::solve,
+  static const std::vector<Bin> bins{Bin::paramcheck, Bin::startup, Bin::setup,    Bin::initial, Bin::solve,
                                      Bin::update,  Bin::check,      Bin::analysis, Bin::output,  Bin::terminate};
   return bins;
 }

@@ -52,6 +52,9 @@ void declare(core::PluginBuilder& b) {
       .default_value(std::int64_t{4})
       .at_least(2);
 
+  b.schedule(Bin::paramcheck, "check_hierarchy", [](Context& ctx) { build_hierarchy(spec_from(ctx.params())); })
+      .doc("n and the coarsening parameters give a valid hierarchy (also run by bhnsid check)");
+
   b.schedule(Bin::startup, "create", [state](Context& ctx) {
      const HierarchySpec spec = spec_from(ctx.params());
      auto levels = build_hierarchy(spec);

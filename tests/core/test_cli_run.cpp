@@ -34,7 +34,7 @@ TEST_CASE("core.run.directory_contents", "[core][run]") {
   CHECK_THAT(read_file(out / "timers.tsv"), Contains("SOLVE\ttp_counter.solve\t3\t") && Contains("TOTAL\ttotal"));
   CHECK(read_file(out / "history.tsv") == "iteration\tcounter\n1\t1\n2\t2\n3\t3\n");
   CHECK(read_file(out / "order.txt") ==
-        "startup\nparamcheck\nsetup\ninitial\nsolve\nupdate\ncheck\nsolve\nupdate\ncheck\nsolve\nupdate\ncheck\n"
+        "paramcheck\nstartup\nsetup\ninitial\nsolve\nupdate\ncheck\nsolve\nupdate\ncheck\nsolve\nupdate\ncheck\n"
         "analysis\noutput\n");
   CHECK_THAT(read_file(out / "terminate.txt"), Contains("terminate"));
 }

@@ -170,3 +170,22 @@ TEST_CASE("plugins.grid.plugin_builds_the_hierarchy_from_parameters", "[plugins]
   CHECK(odd.exit_code == core::exit_input);
   CHECK_THAT(odd.err, Contains("grid.n"));
 }
+
+TEST_CASE("plugins.grid.check_refuses_a_bad_hierarchy_before_any_run", "[plugins][grid]") {
+  // The hierarchy is checked in PARAMCHECK, which `bhnsid check` runs and `bhnsid run` runs before
+  // it creates the run directory: an odd grid.n is exit 2 from both, the message names the file
+  // and the key, and no run directory is left behind.
+  using namespace bhnsid::test;
+  TempDir dir;
+  const auto par = dir.write("odd.yaml", "plugins: [grid]\ngrid:\n  n: 63\n");
+  const ProcessResult check = run_bhnsid({"check", par.string()});
+  CHECK(check.exit_code == 2);
+  CHECK_THAT(check.err, Contains(par.string()) && Contains("grid.n = 63"));
+  const auto out = dir.path() / "odd";
+  const ProcessResult run = run_bhnsid({"run", par.string(), "--output", out.string()});
+  CHECK(run.exit_code == 2);
+  CHECK_THAT(run.err, Contains("grid.n = 63"));
+  CHECK_FALSE(std::filesystem::exists(out));
+  const ProcessResult good = run_bhnsid({"check", par.string(), "--set", "grid.n=64"});
+  CHECK(good.exit_code == 0);
+}

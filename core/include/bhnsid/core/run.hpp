@@ -20,6 +20,11 @@ struct RunResult {
   int exit_code = 0;
 };
 
+/// Runs every PARAMCHECK entry (cross-parameter checks that read parameters only; no services,
+/// no run directory): `bhnsid check` and, before anything is written, `bhnsid run`. A failure is
+/// an InputError naming the entry.
+void check_parameters(const Configuration& config);
+
 RunResult run(const Configuration& config, const RunOptions& options);
 
 /// Build and host facts for summary.json's "provenance".

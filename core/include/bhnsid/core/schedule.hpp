@@ -1,5 +1,6 @@
 #pragma once
-// Schedule bins and entries. STARTUP..INITIAL run once, SOLVE/UPDATE/CHECK form the loop, then
+// Schedule bins and entries. PARAMCHECK runs first, before the run directory exists and also in
+// `bhnsid check`, so its entries may only read parameters; STARTUP..INITIAL then run once, SOLVE/UPDATE/CHECK form the loop, then
 // ANALYSIS, OUTPUT and TERMINATE run once, also after a failed loop so the last state is kept.
 #include <functional>
 #include <string>
@@ -9,7 +10,7 @@ namespace bhnsid::core {
 
 class Context;
 
-enum class Bin { startup, paramcheck, setup, initial, solve, update, check, analysis, output, terminate };
+enum class Bin { paramcheck, startup, setup, initial, solve, update, check, analysis, output, terminate };
 
 const char* to_string(Bin bin);
 bool in_loop(Bin bin);
