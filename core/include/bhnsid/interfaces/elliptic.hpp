@@ -40,6 +40,7 @@ struct RelaxArgs {
 
 class EllipticEquation : public core::Service {
  public:
+  ~EllipticEquation() override;  ///< defined in the core library, like Grid's (see grid.hpp)
   /// Short name used in reports ("hamiltonian", "momentum", ...).
   virtual std::string name() const = 0;
   /// The grid field this equation solves for (registered by the equation on all levels).

@@ -69,6 +69,9 @@ struct ExcisionRegion {
 
 class Grid : public core::Service {
  public:
+  /// Defined in the core library: its type information then exists once, there, and
+  /// dynamic_cast from Service works across plugins loaded with RTLD_LOCAL on any C++ runtime.
+  ~Grid() override;
   virtual Symmetry symmetry() const = 0;
   virtual int num_levels() const = 0;
   virtual const Level& level(int index) const = 0;

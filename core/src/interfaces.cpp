@@ -1,0 +1,11 @@
+// Key functions of the core-declared service interfaces: defining each destructor here anchors the
+// class's type information and vtable in the core library, so that every plugin shares them.
+#include "bhnsid/interfaces/elliptic.hpp"
+#include "bhnsid/interfaces/grid.hpp"
+
+namespace bhnsid {
+
+Grid::~Grid() = default;
+EllipticEquation::~EllipticEquation() = default;
+
+}  // namespace bhnsid
