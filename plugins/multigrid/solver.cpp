@@ -269,21 +269,39 @@ double FasSolver::rms_interior(const Slot& s, int field, int l) const {
 
 void FasSolver::fail_nonfinite(int cycle_number) const {
   const Level& lv = grid_.finest();
+  // The first non-finite value, or else (a norm that overflowed) the largest one, with its place.
+  const Slot* where_slot = nullptr;
+  int where_field = -1, where_comp = 0, wi = 0, wj = 0, wk = 0;
+  double largest = -1;
   for (const Slot& s : slots_)
     for (int which : {s.u, s.res})
       for (int c = 0; c < s.ncomp; ++c) {
         const double* v = grid_.data(which, c, 0);
         for (int k = 0; k < lv.nz; ++k)
           for (int j = 0; j < lv.ny; ++j)
-            for (int i = 0; i < lv.nx; ++i)
-              if (!std::isfinite(v[lv.at(i, j, k)]))
+            for (int i = 0; i < lv.nx; ++i) {
+              const double x = v[lv.at(i, j, k)];
+              if (!std::isfinite(x))
                 throw RunFailure(fmt::format(
                     "multigrid: {} of equation '{}' (component {}) is {} at point ({}, {}, {}) = ({:.6g}, {:.6g}, "
-                    "{:.6g}) after cycle {}",
-                    which == s.u ? "the solution" : "the residual", s.name, c, v[lv.at(i, j, k)], i, j, k, lv.x(i),
-                    lv.y(j), lv.z(k), cycle_number));
+                    "{:.6g}) after {}",
+                    which == s.u ? "the solution" : "the residual", s.name, c, x, i, j, k, lv.x(i), lv.y(j), lv.z(k),
+                    cycle_number == 0 ? "the FMG start" : fmt::format("cycle {}", cycle_number)));
+              if (std::fabs(x) > largest) {
+                largest = std::fabs(x);
+                where_slot = &s;
+                where_field = which;
+                where_comp = c;
+                wi = i, wj = j, wk = k;
+              }
+            }
       }
-  throw RunFailure(fmt::format("multigrid: a residual norm is not finite after cycle {}", cycle_number));
+  throw RunFailure(fmt::format(
+      "multigrid: the residual norm overflows after {}: the largest value is {} = {:.3e} of equation '{}' "
+      "(component {}) at point ({}, {}, {}) = ({:.6g}, {:.6g}, {:.6g})",
+      cycle_number == 0 ? "the FMG start" : fmt::format("cycle {}", cycle_number),
+      where_slot && where_field == where_slot->u ? "the solution" : "the residual", largest,
+      where_slot ? where_slot->name : "?", where_comp, wi, wj, wk, lv.x(wi), lv.y(wj), lv.z(wk)));
 }
 
 SolveReport FasSolver::solve() {

@@ -94,3 +94,18 @@ TEST_CASE("plugins.multigrid.cycle_limit_fails_and_keeps_history", "[plugins][mu
   CHECK_THAT(history, Contains("residual_"));
   CHECK(std::count(history.begin(), history.end(), '\n') == 3);  // header, after FMG, cycle 1
 }
+
+TEST_CASE("plugins.multigrid.blow_up_is_reported_with_equation_and_place", "[plugins][multigrid]") {
+  // Lap u + c u^5 = f with c = 50 is far outside the monotone range (mms warns: 5 c u^4 exceeds
+  // the lowest eigenvalue of -Lap) and the point Newton steps blow up: the solve ends as a failed
+  // run naming the equation, the point and the cycle, never as an answer.
+  TempDir dir;
+  const SolveRun run = solve(dir, "blowup", {{"grid.n", "16"}, {"grid.dx", "0.125"}, {"mms.problem", "nonlinear"},
+                                             {"mms.nonlinear_c", "50"}});
+  INFO(run.log);
+  CHECK(run.exit_code == 1);
+  CHECK(run.summary["status"] == "failed");
+  const std::string message = run.summary["message"].get<std::string>();
+  CHECK_THAT(message, Contains("equation 'mms'") && Contains("at point ("));
+  CHECK((message.find("nan") != std::string::npos || message.find("overflows") != std::string::npos));
+}
