@@ -63,7 +63,8 @@ struct Measured {
   json summary;
 };
 
-Measured run_once(const std::string& parfile_text, const fs::path& directory) {
+Measured run_once(const std::string& parfile_text, const std::vector<std::string>& overrides,
+                  const fs::path& directory) {
   using namespace bhnsid::core;
   PluginLoader loader(plugin_search_path({}));
   ParFile file = parse_parfile(parse_yaml(parfile_text, "bhnsid-bench.yaml"));
@@ -71,7 +72,7 @@ Measured run_once(const std::string& parfile_text, const fs::path& directory) {
   const auto start = std::chrono::steady_clock::now();
   {
     Silence quiet;
-    Configuration config = configure(std::move(file), {}, loader);
+    Configuration config = configure(std::move(file), overrides, loader);
     RunOptions options;
     options.run_directory = directory;
     options.force = true;
@@ -87,7 +88,7 @@ Measured run_once(const std::string& parfile_text, const fs::path& directory) {
   return {seconds, summary};
 }
 
-int poisson(int n, int threads, int reps, double tau_factor) {
+int poisson(int n, int threads, int reps, double tau_factor, const std::vector<std::string>& overrides) {
   if (n < 3 || ((n + 1) & n) != 0) {
     std::cerr << "bhnsid-bench poisson: --n must be 2^k - 1 (vertex-centred multigrid: n + 1 intervals), got " << n
               << "\n";
@@ -102,10 +103,17 @@ int poisson(int n, int threads, int reps, double tau_factor) {
   const fs::path directory = fs::temp_directory_path() / ("bhnsid-bench-" + std::to_string(getpid()));
   Measured best{1e300, {}};
   for (int r = 0; r <= reps; ++r) {  // run 0 warms up (page cache, plugin loading)
-    Measured m = run_once(par.str(), directory);
+    Measured m = run_once(par.str(), overrides, directory);
     if (r > 0 && m.seconds < best.seconds) best = m;
   }
+  // The reference: the same discretization solved to round-off level (not timed), so that the JSON
+  // shows how close "discretization error" is: max_error / converged_max_error - 1.
+  std::vector<std::string> reference_overrides = overrides;
+  reference_overrides.push_back("multigrid.tau_factor=1e-6");
+  reference_overrides.push_back("multigrid.max_cycles=60");
+  const Measured reference = run_once(par.str(), reference_overrides, directory);
   fs::remove_all(directory);
+  const double converged_error = reference.summary["scalars"].value("error_max", 0.0);
   const json& s = best.summary["scalars"];
   const double points = static_cast<double>(n) * n * n;
   // A fused red-black sweep reads u and the source and writes u once per point (physics-free
@@ -115,11 +123,14 @@ int poisson(int n, int threads, int reps, double tau_factor) {
   json out = {{"case", "poisson"},
               {"n", n},
               {"threads", threads},
+              {"settings", overrides},
               {"seconds", best.seconds},
               {"solve_seconds", s.value("multigrid_seconds", 0.0)},
               {"cycles", s.value("multigrid_cycles", 0.0)},
               {"factor", s.value("multigrid_factor", 0.0)},
               {"max_error", s.value("error_max", 0.0)},
+              {"converged_max_error", converged_error},
+              {"error_excess", converged_error > 0 ? s.value("error_max", 0.0) / converged_error - 1 : 0.0},
               {"bytes_per_point_sweep", bytes_per_point_sweep},
               {"sweep_seconds", sweep_seconds},
               {"sweep_GBps", sweep_seconds > 0 ? bytes_per_point_sweep * points / sweep_seconds / 1e9 : 0.0}};
@@ -133,16 +144,24 @@ int main(int argc, char** argv) {
   CLI::App app{"bhnsid-bench: benchmarks of the production solver path, one JSON line per case"};
   app.require_subcommand(1);
   int n = 255, threads = 1, reps = 3;
-  double tau_factor = 0.05;
+  // FMG and one V(2,2) cycle with omega = 1.2 stop at |r| <= |tau| with max_error 3.7 % above the
+  // converged one at N = 63, 127 and 255; the default V(2,1) needs two cycles for that (1.0 %)
+  // and takes 20 % longer. error_excess in the output shows the criterion is met.
+  double tau_factor = 1.0;
   auto* p = app.add_subcommand("poisson", "the hypre peer's Poisson problem solved to discretization error");
   p->add_option("--n", n, "interior points per axis, 2^k - 1 (the peer's N)")->required();
   p->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
   p->add_option("--reps", reps, "timed runs after one warm-up; the best is reported")->check(CLI::PositiveNumber);
-  p->add_option("--tau-factor", tau_factor,
-                "stop when |r| <= this * |tau|; 0.05 leaves max_error within 5% of the converged one");
+  p->add_option("--tau-factor", tau_factor, "stop when |r| <= this * |tau| (multigrid.tau_factor)");
+  std::vector<std::string> user_overrides;
+  p->add_option("--set", user_overrides, "override a parameter of the run, as bhnsid run --set (repeatable)")
+      ->allow_extra_args(false);
   CLI11_PARSE(app, argc, argv);
+  // The benchmark's cycle; a --set of the same key, applied later, wins.
+  std::vector<std::string> overrides{"multigrid.pre_sweeps=2", "multigrid.post_sweeps=2", "multigrid.omega=1.2"};
+  overrides.insert(overrides.end(), user_overrides.begin(), user_overrides.end());
   try {
-    return poisson(n, threads, reps, tau_factor);
+    return poisson(n, threads, reps, tau_factor, overrides);
   } catch (const std::exception& e) {
     std::cerr << "bhnsid-bench: " << e.what() << "\n";
     return 1;
