@@ -1,11 +1,13 @@
 // Key functions of the core-declared service interfaces: defining each destructor here anchors the
 // class's type information and vtable in the core library, so that every plugin shares them.
 #include "bhnsid/interfaces/elliptic.hpp"
+#include "bhnsid/interfaces/eos.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 
 namespace bhnsid {
 
 Grid::~Grid() = default;
 EllipticEquation::~EllipticEquation() = default;
+Eos::~Eos() = default;
 
 }  // namespace bhnsid
