@@ -3,11 +3,13 @@
 #include "bhnsid/interfaces/elliptic.hpp"
 #include "bhnsid/interfaces/eos.hpp"
 #include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/tov_family.hpp"
 
 namespace bhnsid {
 
 Grid::~Grid() = default;
 EllipticEquation::~EllipticEquation() = default;
 Eos::~Eos() = default;
+TovFamily::~TovFamily() = default;
 
 }  // namespace bhnsid

@@ -1,0 +1,85 @@
+#include "family.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <vector>
+
+#include "bhnsid/core/errors.hpp"
+
+namespace bhnsid::tov {
+
+Family::Family(const Eos& eos, Settings settings, SearchSettings search)
+    : eos_(eos), settings_(settings), search_(search) {}
+
+TovStar Family::star(double central_density) const { return solve_star(eos_, central_density, settings_); }
+
+// Log scan for the largest mass, then golden-section search in ln rho_c on the bracket around it.
+double Family::maximize(bool rest_mass) const {
+  auto mass = [&](double log_rho) {
+    const TovStar s = star(std::exp(log_rho));
+    return rest_mass ? s.rest_mass : s.adm_mass;
+  };
+  const int n = std::max(3, search_.scan_points);
+  const double a0 = std::log(search_.density_min), a1 = std::log(search_.density_max);
+  std::vector<double> x(static_cast<std::size_t>(n)), v(x.size());
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    x[i] = a0 + (a1 - a0) * static_cast<double>(i) / (n - 1);
+    v[i] = mass(x[i]);
+    if (v[i] > v[best]) best = i;
+  }
+  if (best == 0 || best + 1 == x.size())
+    throw core::RunFailure(fmt::format(
+        "TOV: the {} mass has no maximum inside the central densities [{}, {}] (EOS {}); widen tov.search_density_*",
+        rest_mass ? "rest" : "ADM", search_.density_min, search_.density_max, eos_.describe()));
+  double lo = x[best - 1], hi = x[best + 1];
+  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+  double c = hi - g * (hi - lo), d = lo + g * (hi - lo);
+  double fc = mass(c), fd = mass(d);
+  while (hi - lo > search_.relative_tolerance) {
+    if (fc > fd) {
+      hi = d, d = c, fd = fc;
+      c = hi - g * (hi - lo), fc = mass(c);
+    } else {
+      lo = c, c = d, fc = fd;
+      d = lo + g * (hi - lo), fd = mass(d);
+    }
+  }
+  return std::exp(0.5 * (lo + hi));
+}
+
+TovStar Family::maximum_mass_star() const {
+  std::lock_guard lock(mutex_);
+  if (!max_adm_) max_adm_ = star(maximize(false));
+  return *max_adm_;
+}
+
+TovStar Family::maximum_rest_mass_star() const {
+  std::lock_guard lock(mutex_);
+  if (!max_rest_) max_rest_ = star(maximize(true));
+  return *max_rest_;
+}
+
+double Family::central_density_from_rest_mass(double m0) const {
+  const TovStar top = maximum_rest_mass_star();
+  if (!(m0 > 0) || m0 > top.rest_mass)
+    throw core::RunFailure(fmt::format("TOV: no stable star of rest mass {} (EOS {}: 0 < M0 <= (M0)_max = {:.9g})", m0,
+                                       eos_.describe(), top.rest_mass));
+  if (m0 == top.rest_mass) return top.central_density;
+  double hi = top.central_density, lo = 0.5 * hi;
+  for (int i = 0; star(lo).rest_mass >= m0; ++i, lo *= 0.5)
+    if (i > 200) throw core::RunFailure(fmt::format("TOV: cannot bracket the star of rest mass {}", m0));
+  // Bisection in ln rho_c: M0 increases monotonically with rho_c on the stable branch.
+  while (std::log(hi / lo) > 1e-14) {
+    const double mid = std::sqrt(lo * hi);
+    (star(mid).rest_mass < m0 ? lo : hi) = mid;
+  }
+  return std::sqrt(lo * hi);
+}
+
+TovStar Family::star_from_rest_mass(double m0) const { return star(central_density_from_rest_mass(m0)); }
+
+double Family::adm_mass_from_rest_mass(double m0) const { return star_from_rest_mass(m0).adm_mass; }
+
+}  // namespace bhnsid::tov

@@ -1,0 +1,44 @@
+#pragma once
+// The tov plugin's TovFamily: the stars of one EOS, the maximum-mass stars (found once, cached) and
+// the stable-branch star of a given rest mass.
+#include <mutex>
+#include <optional>
+
+#include "bhnsid/interfaces/eos.hpp"
+#include "bhnsid/interfaces/tov_family.hpp"
+#include "solver.hpp"
+
+namespace bhnsid::tov {
+
+struct SearchSettings {
+  /// The maxima are searched for on a logarithmic scan of `scan_points` central densities in
+  /// [density_min, density_max], then refined by golden-section search to `relative_tolerance` in rho_c.
+  double density_min = 1e-3, density_max = 3.0;
+  int scan_points = 40;
+  double relative_tolerance = 1e-9;
+};
+
+class Family final : public TovFamily {
+ public:
+  Family(const Eos& eos, Settings settings, SearchSettings search = {});
+
+  TovStar star(double central_density) const override;
+  double adm_mass_from_rest_mass(double rest_mass) const override;
+  TovStar star_from_rest_mass(double rest_mass) const override;
+  TovStar maximum_mass_star() const override;
+  TovStar maximum_rest_mass_star() const override;
+
+  /// The stable-branch central density of the star of rest mass M0.
+  double central_density_from_rest_mass(double rest_mass) const;
+
+ private:
+  double maximize(bool rest_mass) const;  // the central density of the maximum
+
+  const Eos& eos_;
+  Settings settings_;
+  SearchSettings search_;
+  mutable std::mutex mutex_;
+  mutable std::optional<TovStar> max_adm_, max_rest_;
+};
+
+}  // namespace bhnsid::tov
