@@ -3,6 +3,7 @@
 #include "bhnsid/interfaces/elliptic.hpp"
 #include "bhnsid/interfaces/eos.hpp"
 #include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/spacetime.hpp"
 #include "bhnsid/interfaces/tov_family.hpp"
 
 namespace bhnsid {
@@ -11,5 +12,7 @@ Grid::~Grid() = default;
 EllipticEquation::~EllipticEquation() = default;
 Eos::~Eos() = default;
 TovFamily::~TovFamily() = default;
+Fluid::~Fluid() = default;
+Puncture::~Puncture() = default;
 
 }  // namespace bhnsid

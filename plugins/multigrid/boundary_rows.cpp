@@ -26,25 +26,42 @@ std::vector<RayStencil> robin_stencils(const Level& lv, const std::array<double,
     RayStencil row;
     row.point = lv.at(i, j, k);
     row.scale = 1.0 - lv.dx / reach;
-    int cell[3];
-    double frac[3];
+    // Per axis: the points it uses and their weights. The axis (or axes) with |X_a| = reach is
+    // exact: x_in lies on the grid plane one cell in. Other axes interpolate with 3 points around
+    // x_b's own index (shifted inward at the cube's edges), x_in lying within one cell of x_b.
+    int first[3], count[3];
+    double w[3][3];
+    const int own[3] = {i, j, k};
     for (int a = 0; a < 3; ++a) {
       const double t = (centre[a] + row.scale * X[a] - lv.origin[a]) / lv.dx;
-      int m = static_cast<int>(std::floor(t));
-      m = std::clamp(m, 0, last[a] - 1);
-      cell[a] = m;
-      frac[a] = std::clamp(t - m, 0.0, 1.0);
-      // Round-off must not hand a weight of 1e-17 to a point outside the ray's cell.
-      if (frac[a] < 1e-12) frac[a] = 0;
-      if (frac[a] > 1 - 1e-12) frac[a] = 1;
+      const double nearest = std::round(t);
+      if (std::fabs(t - nearest) < 1e-9) {
+        first[a] = std::clamp(static_cast<int>(nearest), 0, last[a]);
+        count[a] = 1;
+        w[a][0] = 1;
+        continue;
+      }
+      first[a] = std::clamp(own[a] - 1, 0, last[a] - 2);
+      count[a] = 3;
+      const double u = t - first[a];  // nodes at 0, 1, 2
+      w[a][0] = 0.5 * (u - 1) * (u - 2);
+      w[a][1] = -u * (u - 2);
+      w[a][2] = 0.5 * u * (u - 1);
     }
-    for (int c = 0; c < 8; ++c) {
-      const int d[3] = {c & 1, (c >> 1) & 1, (c >> 2) & 1};
-      double w = 1;
-      for (int a = 0; a < 3; ++a) w *= d[a] ? frac[a] : 1 - frac[a];
-      row.index[static_cast<std::size_t>(c)] = lv.at(cell[0] + d[0], cell[1] + d[1], cell[2] + d[2]);
-      row.weight[static_cast<std::size_t>(c)] = w;
-    }
+    row.index.fill(row.point);
+    row.weight.fill(0.0);
+    std::size_t c = 0;
+    for (int p = 0; p < count[0]; ++p)
+      for (int q = 0; q < count[1]; ++q)
+        for (int r = 0; r < count[2]; ++r) {
+          if (c == row.index.size())
+            throw core::RunFailure(fmt::format("multigrid: the Robin row of face point ({}, {}, {}) on level {} needs "
+                                               "interpolation along three axes",
+                                               i, j, k, lv.index));
+          row.index[c] = lv.at(first[0] + p, first[1] + q, first[2] + r);
+          row.weight[c] = w[0][p] * w[1][q] * w[2][r];
+          ++c;
+        }
     rows.push_back(row);
   });
   return rows;
@@ -54,7 +71,7 @@ namespace {
 
 double interpolated(const RayStencil& row, const double* u) {
   double v = 0;
-  for (std::size_t c = 0; c < 8; ++c) v += row.weight[c] * u[row.index[c]];
+  for (std::size_t c = 0; c < row.index.size(); ++c) v += row.weight[c] * u[row.index[c]];
   return v;
 }
 

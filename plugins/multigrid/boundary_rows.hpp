@@ -4,13 +4,21 @@
 // constant along each ray from the centre x0, and that is how it is discretised here: for a face
 // point x_b and the point x_in = x0 + s (x_b - x0), s = 1 - h / |x_b - x0|_inf, one cell further
 // in along the same ray,
-//     (u_b - u_inf) = s (u(x_in) - u_inf),   u(x_in) by trilinear interpolation (second order).
-// Exact for every u_inf + f(angles)/|x - x0|, like the differential form. The literal form with
-// one-sided normal derivatives and centred tangential ones (§5.2) was tried first: its rows are
-// not diagonally dominant and red-black Gauss-Seidel on them diverged (residual x1.4 per sweep).
-// Here each row fixes u_b from interior values with positive weights summing to s < 1, so the
-// relaxation is a contraction. The rows are equations of the FAS system like the interior ones:
-// relaxed in every sweep, their residuals injected to the coarse level.
+//     (u_b - u_inf) = s (u(x_in) - u_inf),
+// exact for every u_inf + f(angles)/|x - x0|, like the differential form. x_in lies on the grid
+// plane one cell inside the face, so u(x_in) is interpolated in the (at most two) tangential
+// directions, by 3-point Lagrange interpolation on the points around x_b's own index: O(h^3).
+// The order matters: the rows fix the level of the whole solution through the factor
+// 1/(1 - s) = r/h, so an interpolation error e becomes a global error e r/h. Trilinear
+// interpolation (e ~ h^2) made the solution only first-order accurate near the faces (the ADM
+// mass from the 1/r falloff converged like h/r_c); quadratic gives O(h^2) everywhere. The
+// stencil stays within one point of x_b tangentially (two, inward, at edges), so the rows reach
+// no further than the coarse solver's colouring allows. The literal form with one-sided normal
+// derivatives and centred tangential ones (§5.2) was tried first: its rows are not diagonally
+// dominant and red-black Gauss-Seidel on them diverged (residual x1.4 per sweep). Here each row
+// fixes u_b from interior values with weights summing to s < 1 (the few negative weights of the
+// quadratic are at most 1/8), so relaxing the rows converges. The rows are equations of the FAS
+// system like the interior ones: relaxed in every sweep, their residuals injected to the coarse level.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -28,8 +36,8 @@ struct RobinRow {
 /// One face point's row: u[point] - u_inf = scale (sum_k weight[k] u[index[k]] - u_inf).
 struct RayStencil {
   std::ptrdiff_t point;
-  std::array<std::ptrdiff_t, 8> index;
-  std::array<double, 8> weight;
+  std::array<std::ptrdiff_t, 9> index;  ///< up to 3 x 3 tangential points (weight 0 where unused)
+  std::array<double, 9> weight;
   double scale;
 };
 

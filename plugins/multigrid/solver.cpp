@@ -305,6 +305,20 @@ void FasSolver::fail_nonfinite(int cycle_number) const {
 }
 
 SolveReport FasSolver::solve() {
+  try {
+    return solve_cycles();
+  } catch (const RunFailure& failure) {
+    // Equations know what a failure of theirs usually means (e.g. the Hamiltonian constraint's
+    // fold); the solver only knows that it failed.
+    std::string hints;
+    for (const Slot& s : slots_)
+      if (std::string h = s.eq->failure_hint(); !h.empty()) hints += fmt::format("; {}: {}", s.name, h);
+    if (hints.empty()) throw;
+    throw RunFailure(failure.what() + hints);
+  }
+}
+
+SolveReport FasSolver::solve_cycles() {
   using clock = std::chrono::steady_clock;
   report_ = SolveReport{};
   SolveReport& report = report_;

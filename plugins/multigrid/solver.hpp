@@ -75,13 +75,15 @@ class FasSolver {
   ~FasSolver();
 
   /// Solves to the stopping criterion; throws core::RunFailure on NaN, divergence, stagnation or
-  /// max_cycles, naming the equation and, for NaN, the point.
+  /// max_cycles, naming the equation and, for NaN, the point, followed by every equation's
+  /// failure_hint().
   SolveReport solve();
   const std::vector<Slot>& slots() const { return slots_; }
   /// The history of the last solve, also after it failed.
   const SolveReport& last_report() const { return report_; }
 
  private:
+  SolveReport solve_cycles();
   friend class CoarseSolver;
   void prepare();
   void cycle(int l, CycleType type);

@@ -1,11 +1,15 @@
 #pragma once
 // The tov plugin's TovFamily: the stars of one EOS, the maximum-mass stars (found once, cached) and
-// the stable-branch star of a given rest mass.
+// the stable-branch star of a given rest mass, and the frozen-profile sigma models (physics-notes 4.5).
+#include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
+#include <utility>
 
 #include "bhnsid/interfaces/eos.hpp"
 #include "bhnsid/interfaces/tov_family.hpp"
+#include "frozen_profile.hpp"
 #include "solver.hpp"
 
 namespace bhnsid::tov {
@@ -20,13 +24,14 @@ struct SearchSettings {
 
 class Family final : public TovFamily {
  public:
-  Family(const Eos& eos, Settings settings, SearchSettings search = {});
+  Family(const Eos& eos, Settings settings, SearchSettings search = {}, FrozenSettings frozen = {});
 
   TovStar star(double central_density) const override;
   double adm_mass_from_rest_mass(double rest_mass) const override;
   TovStar star_from_rest_mass(double rest_mass) const override;
   TovStar maximum_mass_star() const override;
   TovStar maximum_rest_mass_star() const override;
+  FrozenProfileSolution frozen_profile(double rho_max, double rhat_star, double sigma) const override;
 
   /// The stable-branch central density of the star of rest mass M0.
   double central_density_from_rest_mass(double rest_mass) const;
@@ -39,6 +44,11 @@ class Family final : public TovFamily {
   SearchSettings search_;
   mutable std::mutex mutex_;
   mutable std::optional<TovStar> max_adm_, max_rest_;
+  // One model per (rho_max, rhat_star), each with its own grid and continuation cache; the hydro
+  // iteration uses one pair for a whole run, so a handful is plenty.
+  FrozenSettings frozen_settings_;
+  mutable std::mutex frozen_mutex_;
+  mutable std::map<std::pair<double, double>, std::unique_ptr<FrozenProfileModel>> frozen_;
 };
 
 }  // namespace bhnsid::tov

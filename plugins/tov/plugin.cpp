@@ -53,6 +53,15 @@ void declare(core::PluginBuilder& b) {
       .doc("largest central density of the log scan that brackets the maximum-mass stars")
       .default_value(3.0)
       .greater_than(0);
+  b.integer("frozen_profile_points")
+      .doc("grid intervals on [0, rhat_star] of the frozen-profile sigma model (physics-notes 4.5; fourth order)")
+      .default_value(std::int64_t{400})
+      .at_least(8);
+  b.real("frozen_profile_step")
+      .doc("largest continuation step in sigma of the frozen-profile model, relative to sigma")
+      .default_value(0.005)
+      .greater_than(0)
+      .at_most(0.1);
   b.integer("profile_exterior_points")
       .doc("points of the exterior Schwarzschild solution appended to tov_profile.tsv (0: the interior only)")
       .default_value(std::int64_t{64})
@@ -78,7 +87,10 @@ void declare(core::PluginBuilder& b) {
      SearchSettings search;
      search.density_min = p.real("search_density_min");
      search.density_max = p.real("search_density_max");
-     state->family = std::make_shared<Family>(eos, settings, search);
+     FrozenSettings frozen;
+     frozen.points = static_cast<int>(p.integer("frozen_profile_points"));
+     frozen.step = p.real("frozen_profile_step");
+     state->family = std::make_shared<Family>(eos, settings, search, frozen);
      ctx.publish<TovFamily>("tov_family", state->family);
      ctx.log().info("TOV family of EOS {}", eos.describe());
    }).doc("publish the TovFamily of the EOS under tov_family");

@@ -2,9 +2,13 @@
 
 #include <stdexcept>
 
-#include "kernels/scalar_sweep.hpp"
+#include "bhnsid/interfaces/scalar_sweep.hpp"
 
 namespace bhnsid::mms::kernels {
+
+using stencil::LocalTerm;
+using stencil::scalar_relax_any;
+using stencil::scalar_residual_any;
 
 namespace {
 

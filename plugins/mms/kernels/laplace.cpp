@@ -1,8 +1,12 @@
 #include "kernels/laplace.hpp"
 
-#include "kernels/scalar_sweep.hpp"
+#include "bhnsid/interfaces/scalar_sweep.hpp"
 
 namespace bhnsid::mms::kernels {
+
+using stencil::LocalTerm;
+using stencil::scalar_relax_any;
+using stencil::scalar_residual_any;
 
 namespace {
 

@@ -51,6 +51,9 @@ class EllipticEquation : public core::Service {
   /// Fields the operator reads but does not solve for; the solver restricts them to every level
   /// by full weighting before each solve. Other equations' unknowns need not be listed.
   virtual std::vector<std::string> coefficients() const = 0;
+  /// What a failed solve most likely means for this equation, appended to the solver's failure
+  /// message (e.g. the Hamiltonian constraint's fold); empty for nothing to add.
+  virtual std::string failure_hint() const { return {}; }
 
   /// out[c] = rhs_c - L(u)_c at every interior point of the level (Level::k_begin() .. nz-2 in z,
   /// 1 .. n-1 in x and y), with rhs == nullptr read as zero, and out = 0 at fixed points. The

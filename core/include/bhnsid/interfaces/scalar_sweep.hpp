@@ -1,21 +1,46 @@
 #pragma once
-// The loops of every scalar operator L(u) = lap u + N(x, u): the 7-point Laplacian plus a
+// The loops of every scalar elliptic operator L(u) = lap u + N(x, u): the 7-point Laplacian plus a
 // point-local term N supplied as a small struct (inlined, so each operator compiles to its own
 // tight loop):
 //   struct Local {
-//     static constexpr bool linear;                  // dN/du == 0: the Newton step needs no division
+//     static constexpr bool linear;                      // dN/du == 0: the Newton step needs no division
 //     LocalTerm at(std::ptrdiff_t idx, double u) const;  // N and dN/du at array index idx
 //   };
 // The relaxation uses stencil::red_black_sweep: both colours fused plane by plane, each point moved
-// by omega times its Newton step -(L - rhs) / (dL/du), dL/du = -6/h^2 + dN/du.
+// by omega times its Newton step -(L - rhs) / (dL/du), dL/du = -6/h^2 + dN/du. Shared by every
+// scalar equation plugin (hamiltonian, lapse, mms), so it lives with the other stencil scaffolding.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <type_traits>
 
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/stencil.hpp"
-#include "kernels/common.hpp"
 
-namespace bhnsid::mms::kernels {
+namespace bhnsid::stencil {
+
+/// Refreshes the ghost plane k = -1 of the unknown(s) being relaxed from plane 1 (equatorial
+/// symmetry); the equation passes Grid::fill_ghosts, a test its own copy. Called once per sweep,
+/// between the colours, so a std::function costs nothing that matters.
+using Mirror = std::function<void()>;
+
+/// Calls fn(std::bool_constant<has_rhs>{}, std::bool_constant<masked>{}).
+template <class Fn>
+void with_variants(bool has_rhs, bool masked, Fn&& fn) {
+  if (has_rhs) {
+    if (masked)
+      fn(std::true_type{}, std::true_type{});
+    else
+      fn(std::true_type{}, std::false_type{});
+  } else {
+    if (masked)
+      fn(std::false_type{}, std::true_type{});
+    else
+      fn(std::false_type{}, std::false_type{});
+  }
+}
+
+
 
 struct LocalTerm {
   double value;  ///< N(x, u)
@@ -91,4 +116,4 @@ void scalar_relax_any(const Level& lv, double* u, const double* rhs, const std::
   });
 }
 
-}  // namespace bhnsid::mms::kernels
+}  // namespace bhnsid::stencil

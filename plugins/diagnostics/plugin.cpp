@@ -1,0 +1,47 @@
+// The diagnostics plugin: rest mass and ADM mass (volume integral and 1/r falloff) of the solution,
+// in physical units, as summary.json scalars after a converged run.
+#include <memory>
+
+#include "bhnsid/core/context.hpp"
+#include "bhnsid/core/plugin.hpp"
+#include "bhnsid/interfaces/spacetime.hpp"
+#include "integrals.hpp"
+
+namespace bhnsid::diagnostics {
+namespace {
+
+using core::Bin;
+using core::Context;
+
+void declare(core::PluginBuilder& b) {
+  b.require("grid");
+  b.require("equation.hamiltonian");
+  b.implements("diagnostics");
+
+  b.schedule(Bin::analysis, "masses", [](Context& ctx) {
+     const auto& grid = ctx.services().get<Grid>("grid");
+     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* puncture = ctx.services().find<Puncture>("puncture");
+     Inputs in;
+     in.sigma = fluid ? fluid->sigma() : 1.0;
+     in.bh_bare_mass = puncture ? puncture->bare_mass() : 0.0;
+     in.centre = fluid ? fluid->centre() : puncture ? puncture->position() : std::array<double, 3>{};
+     in.moving = fluid && fluid->moving();
+     const Masses m = masses(grid, in);
+     ctx.set_scalar("rest_mass", m.rest_mass);
+     ctx.set_scalar("adm_mass", m.adm_mass_volume);
+     ctx.set_scalar("adm_mass_falloff", m.adm_mass_falloff);
+     ctx.log().info("M0 = {:.9g}, M_ADM = {:.9g} (volume), {:.9g} (1/r falloff at the faces)", m.rest_mass,
+                    m.adm_mass_volume, m.adm_mass_falloff);
+   }).doc("rest_mass, adm_mass (volume integral) and adm_mass_falloff (Robin coefficient of chi), physical units");
+}
+
+}  // namespace
+}  // namespace bhnsid::diagnostics
+
+extern "C" BHNSID_EXPORT const BhnsidPluginInfo* bhnsid_plugin_info() {
+  static const BhnsidPluginInfo info{BHNSID_ABI_VERSION, "diagnostics", "0.1",
+                                     "rest mass and ADM mass (volume and falloff) of the solution",
+                                     &bhnsid::diagnostics::declare};
+  return &info;
+}

@@ -1,0 +1,133 @@
+#include "hamiltonian.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "bhnsid/core/errors.hpp"
+
+namespace bhnsid::hamiltonian {
+
+using core::TensorKind;
+
+namespace {
+
+const std::vector<TensorKind> scalar{TensorKind::scalar};
+const std::vector<TensorKind> vector{TensorKind::vector_x, TensorKind::vector_y, TensorKind::vector_z};
+
+/// Calls fn(std::bool_constant<moving>{}).
+template <class Fn>
+void with_motion(bool moving, Fn&& fn) {
+  if (moving)
+    fn(std::true_type{});
+  else
+    fn(std::false_type{});
+}
+
+}  // namespace
+
+HamiltonianEquation::HamiltonianEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, double matter_scale)
+    : grid_(grid), fluid_(fluid), puncture_(puncture), matter_scale_(matter_scale) {
+  chi_ = grid.add_field(fields::chi, scalar);
+  puncture_phi_ = grid.add_field(fields::puncture_phi, scalar);
+  aa_ = grid.add_field(fields::aa, scalar);
+  // The fluid fields are registered here too (zero without a hydro plugin), so that vacuum runs read
+  // the same arrays; registering an existing field again returns it.
+  for (const char* name : {fields::rho0, fields::press, fields::enthalpy}) grid.add_field(name, scalar);
+  grid.add_field(fields::fluid_velocity, vector, core::TimeParity::odd);
+}
+
+OuterBoundary HamiltonianEquation::boundary() const {
+  OuterBoundary b;
+  b.kind = OuterBoundary::Kind::robin;
+  b.u_inf = {1.0};
+  if (fluid_)
+    b.centre = fluid_->centre();
+  else if (puncture_)
+    b.centre = puncture_->position();
+  return b;
+}
+
+std::vector<std::string> HamiltonianEquation::coefficients() const {
+  return {fields::aa, fields::rho0, fields::press, fields::enthalpy, fields::fluid_velocity};
+}
+
+std::string HamiltonianEquation::failure_hint() const {
+  if (!fluid_) return {};
+  // With rho0 held fixed (not conformally rescaled) solutions exist only up to a fold in sigma.
+  return fmt::format("with matter at sigma = {:.9g} the Hamiltonian constraint has no solution above the fold "
+                     "sigma_fold of its unscaled source (physics-notes §2.2); sigma may be too large",
+                     fluid_->sigma());
+}
+
+Sources HamiltonianEquation::sources(int level) const {
+  Sources s;
+  s.puncture_phi = grid_.data(puncture_phi_, 0, level);
+  s.aa = grid_.data(aa_, 0, level);
+  s.rho0 = grid_.data(grid_.field_id(fields::rho0), 0, level);
+  s.press = grid_.data(grid_.field_id(fields::press), 0, level);
+  s.enthalpy = grid_.data(grid_.field_id(fields::enthalpy), 0, level);
+  s.sigma2 = fluid_ ? fluid_->sigma() * fluid_->sigma() : 1.0;
+  s.matter_scale = matter_scale_;
+  if (moving()) {
+    if (!grid_.has_field(fields::eta))
+      throw core::RunFailure("hamiltonian: moving matter needs the lapse (eta) for its Lorentz factor; add the lapse plugin");
+    s.eta = grid_.data(grid_.field_id(fields::eta), 0, level);
+    const int vel = grid_.field_id(fields::fluid_velocity);
+    const int beta = grid_.has_field(fields::shift) ? grid_.field_id(fields::shift) : -1;
+    for (int c = 0; c < 3; ++c) {
+      s.velocity[c] = grid_.data(vel, c, level);
+      s.shift[c] = beta >= 0 ? grid_.data(beta, c, level) : nullptr;
+    }
+  }
+  return s;
+}
+
+void HamiltonianEquation::residual(const RelaxArgs& args, double* const* out) const {
+  const int l = args.level;
+  const double* chi = grid_.data(chi_, 0, l);
+  const double* rhs = args.rhs ? args.rhs[0] : nullptr;
+  const Sources s = sources(l);
+  with_motion(moving(), [&](auto m) {
+    stencil::scalar_residual_any(grid_.level(l), chi, rhs, args.fixed, out[0], HamiltonianTerm<decltype(m)::value>{s});
+  });
+}
+
+void HamiltonianEquation::relax(const RelaxArgs& args) const {
+  const int l = args.level;
+  double* chi = grid_.data(chi_, 0, l);
+  const double* rhs = args.rhs ? args.rhs[0] : nullptr;
+  const Sources s = sources(l);
+  const stencil::Mirror mirror = [this, l] { grid_.fill_ghosts(chi_, l); };
+  with_motion(moving(), [&](auto m) {
+    stencil::scalar_relax_any(grid_.level(l), chi, rhs, args.fixed, args.omega, mirror,
+                              HamiltonianTerm<decltype(m)::value>{s});
+  });
+}
+
+void HamiltonianEquation::update_puncture() {
+  const double mass = puncture_ ? puncture_->bare_mass() : 0.0;
+  const std::array<double, 3> pos = puncture_ ? puncture_->position() : std::array<double, 3>{};
+  for (int l = 0; l < grid_.num_levels(); ++l) {
+    const Level& lv = grid_.level(l);
+    double* out = grid_.data(puncture_phi_, 0, l);
+    for (int k = 0; k < lv.nz; ++k)
+      for (int j = 0; j < lv.ny; ++j)
+        for (int i = 0; i < lv.nx; ++i) {
+          if (mass == 0) {
+            out[lv.at(i, j, k)] = 0.0;
+            continue;
+          }
+          const double r = std::hypot(lv.x(i) - pos[0], lv.y(j) - pos[1], lv.z(k) - pos[2]);
+          // A puncture within 1e-6 dx of a point would make 1/r meaningless: the puncture plugin
+          // keeps it off the points; this guards against a bug there, never silently.
+          if (!(r > 1e-6 * lv.dx))
+            throw core::RunFailure(fmt::format("hamiltonian: the puncture ({}, {}, {}) lies on grid point ({}, {}, {}) of level {}",
+                                               pos[0], pos[1], pos[2], i, j, k, l));
+          out[lv.at(i, j, k)] = 0.5 * mass / r;
+        }
+    grid_.fill_ghosts(puncture_phi_, l);
+  }
+}
+
+}  // namespace bhnsid::hamiltonian

@@ -1,0 +1,68 @@
+#pragma once
+// Point functions of the Hamiltonian constraint, eq. ham_hat (physics-notes §2.2):
+//   lap chi + (1/8) phi^-7 AA + 2 pi sigma^2 phi^5 rho_E = 0,   phi = Mhat_BH/(2 rhat_BH) + chi.
+// They plug into stencil::scalar_residual/scalar_relax as the local term N(chi) and its slope.
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+
+#include "bhnsid/interfaces/scalar_sweep.hpp"
+#include "bhnsid/interfaces/spacetime.hpp"
+
+namespace bhnsid::hamiltonian {
+
+/// Arrays of one level that the local term reads; velocity and eta only for moving matter, shift
+/// may be null (no shift equation active).
+struct Sources {
+  const double* puncture_phi = nullptr;
+  const double* aa = nullptr;
+  const double* rho0 = nullptr;
+  const double* press = nullptr;
+  const double* enthalpy = nullptr;
+  const double* eta = nullptr;
+  const double* velocity[3] = {nullptr, nullptr, nullptr};
+  const double* shift[3] = {nullptr, nullptr, nullptr};
+  double sigma2 = 1;        ///< sigma^2: the matter terms of the hatted equations carry it (§1.3)
+  double matter_scale = 1;  ///< 1 except in the IRE sensitivity test (one coefficient times 1 + eps)
+};
+
+/// W^2 at one point from the current phi and eta (physics-notes §2.1); 1 for static matter.
+template <bool Moving>
+inline double lorentz2_at(const Sources& s, std::ptrdiff_t idx, double phi) {
+  if constexpr (!Moving) {
+    (void)s, (void)idx, (void)phi;
+    return 1.0;
+  } else {
+    double u[3];
+    for (int c = 0; c < 3; ++c) u[c] = s.velocity[c][idx] + (s.shift[c] ? s.shift[c][idx] : 0.0);
+    return lorentz_squared(phi, s.eta[idx], u[0], u[1], u[2]);
+  }
+}
+
+/// N(chi) = (1/8) phi^-7 AA + 2 pi sigma^2 phi^5 rho_E and dN/dchi at fixed W. phi^-1 is formed as
+/// 1/(puncture_phi + chi), which is regular (-> 0) at the puncture, so phi^-7 AA ~ r^3 stays finite
+/// however close a point comes to the hole (§2.1); the puncture itself is never a grid point.
+template <bool Moving>
+struct HamiltonianTerm {
+  static constexpr bool linear = false;
+  Sources s;
+  stencil::LocalTerm at(std::ptrdiff_t idx, double chi) const {
+    const double phi = s.puncture_phi[idx] + chi;
+    const double inv_phi = 1.0 / phi;
+    const double inv4 = (inv_phi * inv_phi) * (inv_phi * inv_phi);
+    const double inv7 = inv4 * inv_phi * inv_phi * inv_phi;
+    const double aa = s.aa[idx];
+    double value = 0.125 * aa * inv7, slope = -0.875 * aa * inv7 * inv_phi;
+    const double rho0 = s.rho0[idx];
+    if (rho0 > 0) {
+      const double e = matter_projections(rho0, s.press[idx], s.enthalpy[idx], lorentz2_at<Moving>(s, idx, phi)).energy;
+      const double phi4 = 1.0 / inv4;
+      const double c = 2.0 * std::numbers::pi * s.sigma2 * s.matter_scale * e * phi4;
+      value += c * phi;
+      slope += 5.0 * c;
+    }
+    return {value, slope};
+  }
+};
+
+}  // namespace bhnsid::hamiltonian

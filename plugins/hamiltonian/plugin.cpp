@@ -1,0 +1,61 @@
+// The hamiltonian plugin: the Hamiltonian constraint (eq. ham_hat) for chi, published as the
+// EllipticEquation "equation.hamiltonian" that the multigrid solver relaxes with the others.
+#include <algorithm>
+#include <memory>
+
+#include "bhnsid/core/context.hpp"
+#include "bhnsid/core/plugin.hpp"
+#include "hamiltonian.hpp"
+
+namespace bhnsid::hamiltonian {
+namespace {
+
+using core::Bin;
+using core::Context;
+
+struct State {
+  std::shared_ptr<HamiltonianEquation> equation;
+};
+
+void declare(core::PluginBuilder& b) {
+  auto state = std::make_shared<State>();
+  b.require("grid");
+  b.require("elliptic_solver");
+  b.implements("equation.hamiltonian");
+
+  b.real("initial_chi").doc("starting value of chi everywhere (a hydro plugin may overwrite it with its own guess)").default_value(1.0).greater_than(0);
+  b.real("test_matter_scale")
+      .doc("TEST ONLY: multiplies the matter term 2 pi sigma^2 phi^5 rho_E by this factor, so that tests can "
+           "show that a one-coefficient error is detected; 1 for physics")
+      .default_value(1.0);
+
+  b.schedule(Bin::setup, "setup", [state](Context& ctx) {
+     auto& grid = ctx.services().get<Grid>("grid");
+     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* puncture = ctx.services().find<Puncture>("puncture");
+     state->equation = std::make_shared<HamiltonianEquation>(grid, fluid, puncture, ctx.params().real("test_matter_scale"));
+     ctx.publish<EllipticEquation>("equation.hamiltonian", state->equation);
+     ctx.log().info("Hamiltonian constraint for chi: {}, {}", fluid ? "with matter" : "vacuum",
+                    puncture ? "with a puncture" : "no black hole");
+   }).doc("register chi, puncture_phi, aa_hat (and the fluid fields), publish the equation");
+
+  b.schedule(Bin::initial, "initial_data", [](Context& ctx) {
+     auto& grid = ctx.services().get<Grid>("grid");
+     double* chi = grid.data(grid.field_id(fields::chi), 0, 0);
+     std::fill(chi, chi + grid.finest().size, ctx.params().real("initial_chi"));
+   }).doc("chi = initial_chi on the finest level");
+
+  b.schedule(Bin::solve, "puncture_term", [state](Context&) { state->equation->update_puncture(); })
+      .before("multigrid.solve")
+      .doc("puncture_phi = Mhat_BH/(2 rhat_BH) on every level from the current puncture");
+}
+
+}  // namespace
+}  // namespace bhnsid::hamiltonian
+
+extern "C" BHNSID_EXPORT const BhnsidPluginInfo* bhnsid_plugin_info() {
+  static const BhnsidPluginInfo info{BHNSID_ABI_VERSION, "hamiltonian", "1.0",
+                                     "Hamiltonian constraint for chi (eq. ham_hat), an equation.* service",
+                                     &bhnsid::hamiltonian::declare};
+  return &info;
+}

@@ -1,0 +1,125 @@
+// The hydro_corotating plugin (implements "hydro"): the star's density from the relativistic
+// Bernoulli equation and the outer iteration for (sigma, C_B) in the core's SOLVE/UPDATE/CHECK loop.
+// This is its static-star form (physics-notes §9 T1: Omegahat = 0, no black hole, 2-point Newton
+// solve); the binary adds Omegahat, the third point and the black-hole updates.
+#include <fmt/format.h>
+
+#include <memory>
+
+#include "bhnsid/core/context.hpp"
+#include "bhnsid/core/errors.hpp"
+#include "bhnsid/core/plugin.hpp"
+#include "star.hpp"
+
+namespace bhnsid::hydro_corotating {
+namespace {
+
+using core::Bin;
+using core::Context;
+
+struct State {
+  std::shared_ptr<StarFluid> fluid = std::make_shared<StarFluid>();
+  std::unique_ptr<Star> star;
+};
+
+StarSettings settings_from(const core::ParamSection& p) {
+  StarSettings s;
+  s.rho_max = p.real("rho_max");
+  s.x_a = p.real("x_a");
+  s.sigma_guess = p.real("sigma_guess");
+  s.tolerance = p.real("tolerance");
+  s.iterate = p.boolean("iterate");
+  return s;
+}
+
+std::string history_table(const Star& star) {
+  std::string out = "# iteration\tsigma\tbernoulli_constant\tx_c\tchange\tmatter_points\n";
+  for (const StepReport& r : star.history())
+    out += fmt::format("{}\t{:.15e}\t{:.15e}\t{:.15e}\t{:.6e}\t{}\n", r.iteration, r.after.sigma, r.after.bernoulli,
+                       r.after.x_c, r.change, r.matter_points);
+  return out;
+}
+
+void declare(core::PluginBuilder& b) {
+  auto state = std::make_shared<State>();
+  b.require("grid");
+  b.require("eos");
+  b.require("tov_family");
+  b.require("equation.hamiltonian");
+  b.require("equation.lapse");
+  b.implements("hydro");
+
+  b.real("rho_max").doc("maximum rest-mass density (rho0)_max of the star, a fixed input (code units, K = 1)").required(0.1).greater_than(0);
+  b.real("x_a")
+      .doc("hatted x of the star's inner surface point xhat_A (the outer one is xhat = 1); -1 centres the star at the "
+           "origin (physics-notes §9 T1)")
+      .default_value(-1.0)
+      .at_least(-1.0)
+      .less_than(1.0);
+  b.real("sigma_guess").doc("initial sigma; 0: R_iso(rho_max) / Rhat with Rhat = (1 - x_a)/2 (physics-notes §4.7)").default_value(0.0).at_least(0);
+  b.real("tolerance")
+      .doc("converged when |d sigma/sigma| and |d C_B/C_B| of an outer step are below this (the paper: 1e-4)")
+      .default_value(1e-6)
+      .greater_than(0);
+  b.boolean("iterate")
+      .doc("false: keep the initial TOV density and sigma_guess (one fixed-source field solve, for tests)")
+      .default_value(true);
+
+  b.schedule(Bin::startup, "publish", [state](Context& ctx) { ctx.publish<Fluid>("hydro", state->fluid); })
+      .doc("publish the fluid (sigma, centre) for the equations; its values are set in SETUP");
+
+  b.schedule(Bin::setup, "setup", [state](Context& ctx) {
+     auto& grid = ctx.services().get<Grid>("grid");
+     const auto& eos = ctx.services().get<Eos>("eos");
+     const auto& family = ctx.services().get<TovFamily>("tov_family");
+     state->star = std::make_unique<Star>(grid, eos, family, settings_from(ctx.params()), state->fluid);
+     const StarConstants& c = state->fluid->constants;
+     ctx.log().info("static star, {}: rho_max = {}, xhat_C = {}, Rhat = {}, initial sigma = {:.9g}, C_B = {:.9g}",
+                    eos.describe(), ctx.params().real("rho_max"), c.x_c, state->star->rhat_star(), c.sigma, c.bernoulli);
+   })
+      .after("hamiltonian.setup")
+      .after("lapse.setup")
+      .after("tov.publish_family")
+      .doc("TOV star of rho_max, initial sigma and C_B, fluid fields");
+
+  b.schedule(Bin::initial, "initial_data", [state](Context&) { state->star->set_initial(); })
+      .after("hamiltonian.initial_data")
+      .after("lapse.initial_data")
+      .doc("TOV initial guess: rho0, chi = psi_TOV, eta = alpha_TOV psi_TOV about xhat_C");
+
+  b.schedule(Bin::update, "outer_step", [state](Context& ctx) {
+     const StepReport r = state->star->step();
+     ctx.log().info("outer step {}: sigma = {:.12g}, C_B = {:.12g}, xhat_C = {:.6g}, change {:.3e}{}", r.iteration,
+                    r.after.sigma, r.after.bernoulli, r.after.x_c, r.change, r.converged ? " (converged)" : "");
+   }).doc("Newton solve for (sigma, C_B) with the TOV sigma-model, Bernoulli reset of rho0, flood fill");
+
+  b.check("star_converged", [state](Context&) {
+     const auto& h = state->star->history();
+     const bool done = !h.empty() && h.back().converged;
+     return core::Convergence{done, h.empty() ? "" : fmt::format("star change {:.3e}", h.back().change)};
+   }).doc("the last outer step changed sigma and C_B by less than the tolerance");
+
+  b.schedule(Bin::analysis, "report", [state](Context& ctx) {
+     const StarConstants& c = state->fluid->constants;
+     ctx.set_scalar("sigma", c.sigma);
+     ctx.set_scalar("bernoulli_constant", c.bernoulli);
+     ctx.set_scalar("x_c", c.x_c);
+     ctx.set_scalar("outer_iterations", static_cast<double>(state->star->history().size()));
+   }).doc("sigma, bernoulli_constant, x_c, outer_iterations");
+
+  b.schedule(Bin::output, "write", [state](Context& ctx) {
+     if (!state->star) return;
+     ctx.write_output("star_axis.tsv", state->star->axis_table());
+     ctx.write_output("star_history.tsv", history_table(*state->star));
+   }).doc("star_axis.tsv (fields and TOV values on the x axis) and star_history.tsv, also after a failure");
+}
+
+}  // namespace
+}  // namespace bhnsid::hydro_corotating
+
+extern "C" BHNSID_EXPORT const BhnsidPluginInfo* bhnsid_plugin_info() {
+  static const BhnsidPluginInfo info{BHNSID_ABI_VERSION, "hydro_corotating", "0.1",
+                                     "corotating polytropic star: Bernoulli equation and the (sigma, C_B) outer iteration",
+                                     &bhnsid::hydro_corotating::declare};
+  return &info;
+}

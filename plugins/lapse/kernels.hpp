@@ -1,0 +1,56 @@
+#pragma once
+// Point functions of the maximal-slicing condition for eta = alpha phi, eq. maxslice_hat
+// (physics-notes §2.4):
+//   lap eta - eta [ (7/8) phi^-8 AA + 2 pi sigma^2 phi^4 (rho_E + 2 S) ] = 0.
+// The coefficient of eta is >= 0, so the equation is uniquely solvable and eta is regular at the
+// puncture; alpha = eta/phi -> 0 there.
+#include <cstddef>
+#include <numbers>
+
+#include "bhnsid/interfaces/scalar_sweep.hpp"
+#include "bhnsid/interfaces/spacetime.hpp"
+
+namespace bhnsid::lapse {
+
+/// Arrays of one level the local term reads (velocity and shift only for moving matter; shift may
+/// be null).
+struct Sources {
+  const double* chi = nullptr;
+  const double* puncture_phi = nullptr;
+  const double* aa = nullptr;
+  const double* rho0 = nullptr;
+  const double* press = nullptr;
+  const double* enthalpy = nullptr;
+  const double* velocity[3] = {nullptr, nullptr, nullptr};
+  const double* shift[3] = {nullptr, nullptr, nullptr};
+  double sigma2 = 1;        ///< sigma^2 on the matter term (physics-notes §1.3)
+  double matter_scale = 1;  ///< 1 except in the IRE sensitivity test
+};
+
+/// N(eta) = -eta k(x) and dN/deta = -k at fixed W (W depends on eta only through the velocity,
+/// a small term in the Newton step that the outer solve corrects).
+template <bool Moving>
+struct LapseTerm {
+  static constexpr bool linear = false;
+  Sources s;
+  stencil::LocalTerm at(std::ptrdiff_t idx, double eta) const {
+    const double phi = s.puncture_phi[idx] + s.chi[idx];
+    const double inv_phi = 1.0 / phi;
+    const double inv4 = (inv_phi * inv_phi) * (inv_phi * inv_phi);
+    double k = 0.875 * s.aa[idx] * inv4 * inv4;
+    const double rho0 = s.rho0[idx];
+    if (rho0 > 0) {
+      double lorentz2 = 1.0;
+      if constexpr (Moving) {
+        double u[3];
+        for (int c = 0; c < 3; ++c) u[c] = s.velocity[c][idx] + (s.shift[c] ? s.shift[c][idx] : 0.0);
+        lorentz2 = lorentz_squared(phi, eta, u[0], u[1], u[2]);
+      }
+      const MatterProjections m = matter_projections(rho0, s.press[idx], s.enthalpy[idx], lorentz2);
+      k += 2.0 * std::numbers::pi * s.sigma2 * s.matter_scale * (m.energy + 2.0 * m.trace) / inv4;
+    }
+    return {-eta * k, -k};
+  }
+};
+
+}  // namespace bhnsid::lapse

@@ -1,0 +1,76 @@
+#include "lapse.hpp"
+
+#include <fmt/format.h>
+
+#include "bhnsid/core/errors.hpp"
+
+namespace bhnsid::lapse {
+
+LapseEquation::LapseEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, double matter_scale)
+    : grid_(grid), fluid_(fluid), puncture_(puncture), matter_scale_(matter_scale) {
+  eta_ = grid.add_field(fields::eta, {core::TensorKind::scalar});
+  for (const char* name : {fields::chi, fields::puncture_phi, fields::aa, fields::rho0})
+    if (!grid.has_field(name))
+      throw core::RunFailure(fmt::format("lapse: the field {} is missing; the lapse needs the hamiltonian plugin", name));
+}
+
+OuterBoundary LapseEquation::boundary() const {
+  OuterBoundary b;
+  b.kind = OuterBoundary::Kind::robin;
+  b.u_inf = {1.0};
+  if (fluid_)
+    b.centre = fluid_->centre();
+  else if (puncture_)
+    b.centre = puncture_->position();
+  return b;
+}
+
+std::vector<std::string> LapseEquation::coefficients() const {
+  return {fields::aa, fields::rho0, fields::press, fields::enthalpy, fields::fluid_velocity};
+}
+
+Sources LapseEquation::sources(int level) const {
+  Sources s;
+  s.chi = grid_.data(grid_.field_id(fields::chi), 0, level);
+  s.puncture_phi = grid_.data(grid_.field_id(fields::puncture_phi), 0, level);
+  s.aa = grid_.data(grid_.field_id(fields::aa), 0, level);
+  s.rho0 = grid_.data(grid_.field_id(fields::rho0), 0, level);
+  s.press = grid_.data(grid_.field_id(fields::press), 0, level);
+  s.enthalpy = grid_.data(grid_.field_id(fields::enthalpy), 0, level);
+  s.sigma2 = fluid_ ? fluid_->sigma() * fluid_->sigma() : 1.0;
+  s.matter_scale = matter_scale_;
+  if (moving()) {
+    const int vel = grid_.field_id(fields::fluid_velocity);
+    const int beta = grid_.has_field(fields::shift) ? grid_.field_id(fields::shift) : -1;
+    for (int c = 0; c < 3; ++c) {
+      s.velocity[c] = grid_.data(vel, c, level);
+      s.shift[c] = beta >= 0 ? grid_.data(beta, c, level) : nullptr;
+    }
+  }
+  return s;
+}
+
+void LapseEquation::residual(const RelaxArgs& args, double* const* out) const {
+  const int l = args.level;
+  const double* eta = grid_.data(eta_, 0, l);
+  const double* rhs = args.rhs ? args.rhs[0] : nullptr;
+  const Sources s = sources(l);
+  if (moving())
+    stencil::scalar_residual_any(grid_.level(l), eta, rhs, args.fixed, out[0], LapseTerm<true>{s});
+  else
+    stencil::scalar_residual_any(grid_.level(l), eta, rhs, args.fixed, out[0], LapseTerm<false>{s});
+}
+
+void LapseEquation::relax(const RelaxArgs& args) const {
+  const int l = args.level;
+  double* eta = grid_.data(eta_, 0, l);
+  const double* rhs = args.rhs ? args.rhs[0] : nullptr;
+  const Sources s = sources(l);
+  const stencil::Mirror mirror = [this, l] { grid_.fill_ghosts(eta_, l); };
+  if (moving())
+    stencil::scalar_relax_any(grid_.level(l), eta, rhs, args.fixed, args.omega, mirror, LapseTerm<true>{s});
+  else
+    stencil::scalar_relax_any(grid_.level(l), eta, rhs, args.fixed, args.omega, mirror, LapseTerm<false>{s});
+}
+
+}  // namespace bhnsid::lapse

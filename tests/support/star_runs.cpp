@@ -1,0 +1,56 @@
+#include "star_runs.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "process.hpp"
+
+namespace bhnsid::test {
+
+namespace fs = std::filesystem;
+
+StarRun run_static_star(int n, double dx, const std::vector<std::string>& sets, const std::string& parfile) {
+  TempDir dir;
+  const fs::path out = dir.path() / "star";
+  std::vector<std::string> args{"run", (source_dir() / "parfiles" / parfile).string(), "--output", out.string(),
+                                "--set", fmt::format("grid.n={}", n), "--set", fmt::format("grid.dx={}", dx)};
+  for (const std::string& s : sets) {
+    args.push_back("--set");
+    args.push_back(s);
+  }
+  const ProcessResult r = run_bhnsid(args);
+  StarRun run;
+  run.exit_code = r.exit_code;
+  run.output = r.out + r.err;
+  if (!fs::exists(out / "summary.json")) return run;
+  const auto summary = nlohmann::json::parse(read_file(out / "summary.json"));
+  run.status = summary.value("status", "");
+  for (const auto& [key, value] : summary["scalars"].items()) run.scalars[key] = value.get<double>();
+  if (!fs::exists(out / "star_axis.tsv")) return run;
+  // The axis row nearest xhat_C (header: "# sigma = ..., xhat_C = X; ...").
+  std::istringstream lines(read_file(out / "star_axis.tsv"));
+  std::string line;
+  std::getline(lines, line);
+  const double x_c = std::stod(line.substr(line.find("xhat_C = ") + 9));
+  std::getline(lines, line);
+  double best = 1e300;
+  while (std::getline(lines, line)) {
+    double x, rho0, chi, eta, alpha;
+    std::istringstream(line) >> x >> rho0 >> chi >> eta >> alpha;
+    if (std::fabs(x - x_c) < best) {
+      best = std::fabs(x - x_c);
+      run.chi_centre = chi;
+      run.alpha_centre = alpha;
+      run.has_axis = true;
+    }
+  }
+  return run;
+}
+
+double tov01::bernoulli_constant() { return std::sqrt(1 - 2 * adm_mass / radius_areal); }
+
+}  // namespace bhnsid::test

@@ -1,0 +1,36 @@
+#pragma once
+// Runs of parfiles/static_star.yaml through the real executable, and what the tests read back.
+#include <map>
+#include <string>
+#include <vector>
+
+namespace bhnsid::test {
+
+struct StarRun {
+  int exit_code = -1;
+  std::string output;                     ///< stdout + stderr, for INFO
+  std::string status;                     ///< summary.json "status"
+  std::map<std::string, double> scalars;  ///< summary.json "scalars"
+  double chi_centre = 0, alpha_centre = 0;  ///< star_axis.tsv at xhat_C (the nearest axis point)
+  bool has_axis = false;
+};
+
+/// Runs the static-star parfile with grid.n = n, grid.dx = dx and the extra --set overrides.
+StarRun run_static_star(int n, double dx, const std::vector<std::string>& sets = {},
+                        const std::string& parfile = "static_star.yaml");
+
+/// The isolated TOV star of Gamma = 2, K = 1, rho0_c = 0.1, from the independent Python reference
+/// /work/shared/physics-checks/tov.py (physics-notes §6.1 and §9 T1), which the tov plugin's tests
+/// also reproduce to 1e-9: the values every static-star test compares with.
+namespace tov01 {
+inline constexpr double adm_mass = 0.126957417269;
+inline constexpr double rest_mass = 0.135312727055;
+inline constexpr double radius_areal = 1.00473500683;
+inline constexpr double radius_isotropic = 0.873162703434;
+inline constexpr double lapse_center = 0.72037884898;
+inline constexpr double psi_center = 1.15989819199;
+/// C_B = h_max alpha_c = sqrt(1 - 2M/R) (physics-notes §9 T1): 0.864455.
+double bernoulli_constant();
+}  // namespace tov01
+
+}  // namespace bhnsid::test
