@@ -24,15 +24,42 @@ struct State {
   std::optional<TovStar> star;
 };
 
+/// The star of tov.central_density as summary scalars, with an error estimate from a 100 times
+/// tighter integration.
+void report_star(Context& ctx, State& state) {
+  const auto& p = ctx.params();
+  const TovStar s = state.family->star(p.real("central_density"));
+  state.star = s;
+  ctx.set_scalar("adm_mass", s.adm_mass);
+  ctx.set_scalar("rest_mass", s.rest_mass);
+  ctx.set_scalar("radius_areal", s.radius_areal);
+  ctx.set_scalar("radius_isotropic", s.radius_isotropic);
+  ctx.set_scalar("lapse_center", s.lapse_center);
+  ctx.set_scalar("psi_center", s.psi_center);
+  // Error estimate: the same star at a 100 times tighter tolerance.
+  Settings tight;
+  tight.tolerance = p.real("tolerance") * 1e-2;
+  tight.min_steps = static_cast<int>(p.integer("min_steps"));
+  const TovStar ref = solve_star(ctx.services().get<Eos>("eos"), s.central_density, tight);
+  const double err = std::max(std::fabs(s.adm_mass - ref.adm_mass) / ref.adm_mass,
+                              std::fabs(s.rest_mass - ref.rest_mass) / ref.rest_mass);
+  ctx.set_scalar("tov_mass_error_estimate", err);
+  ctx.log().info("rho0_c = {:.9g}: M = {:.12g}, M0 = {:.12g}, R = {:.12g}, R_iso = {:.12g}, alpha_c = {:.12g}, "
+                 "psi_c = {:.12g} (relative mass error ~ {:.1e})",
+                 s.central_density, s.adm_mass, s.rest_mass, s.radius_areal, s.radius_isotropic, s.lapse_center,
+                 s.psi_center, err);
+}
+
 void declare(core::PluginBuilder& b) {
   auto state = std::make_shared<State>();
   b.require("eos");
   b.implements("tov_family");
 
   b.real("central_density")
-      .doc("central rest-mass density rho0_c of the reported star (code units, K = 1 for the paper's polytropes)")
-      .default_value(0.1)
-      .greater_than(0);
+      .doc("central rest-mass density rho0_c of a star to report in summary.json (code units of the EOS); 0: none, "
+           "the plugin only serves the TOV family to others (a static star's own masses come from diagnostics)")
+      .default_value(0.0)
+      .at_least(0);
   b.real("tolerance")
       .doc("relative local error tolerance of the adaptive Dormand-Prince 5(4) steps in s = sqrt(ln h_c - ln h)")
       .default_value(1e-12)
@@ -97,26 +124,7 @@ void declare(core::PluginBuilder& b) {
 
   b.schedule(Bin::analysis, "star", [state](Context& ctx) {
      const auto& p = ctx.params();
-     const TovStar s = state->family->star(p.real("central_density"));
-     state->star = s;
-     ctx.set_scalar("adm_mass", s.adm_mass);
-     ctx.set_scalar("rest_mass", s.rest_mass);
-     ctx.set_scalar("radius_areal", s.radius_areal);
-     ctx.set_scalar("radius_isotropic", s.radius_isotropic);
-     ctx.set_scalar("lapse_center", s.lapse_center);
-     ctx.set_scalar("psi_center", s.psi_center);
-     // Error estimate: the same star at a 100 times tighter tolerance.
-     Settings tight;
-     tight.tolerance = p.real("tolerance") * 1e-2;
-     tight.min_steps = static_cast<int>(p.integer("min_steps"));
-     const TovStar ref = solve_star(ctx.services().get<Eos>("eos"), s.central_density, tight);
-     const double err = std::max(std::fabs(s.adm_mass - ref.adm_mass) / ref.adm_mass,
-                                 std::fabs(s.rest_mass - ref.rest_mass) / ref.rest_mass);
-     ctx.set_scalar("tov_mass_error_estimate", err);
-     ctx.log().info("rho0_c = {:.9g}: M = {:.12g}, M0 = {:.12g}, R = {:.12g}, R_iso = {:.12g}, alpha_c = {:.12g}, "
-                    "psi_c = {:.12g} (relative mass error ~ {:.1e})",
-                    s.central_density, s.adm_mass, s.rest_mass, s.radius_areal, s.radius_isotropic, s.lapse_center,
-                    s.psi_center, err);
+     if (p.real("central_density") > 0) report_star(ctx, *state);
      if (p.boolean("report_maximum")) {
        const TovStar ma = state->family->maximum_mass_star();
        const TovStar mr = state->family->maximum_rest_mass_star();
@@ -127,7 +135,7 @@ void declare(core::PluginBuilder& b) {
        ctx.log().info("maximum ADM mass {:.12g} at rho0_c = {:.9g}; maximum rest mass {:.12g} at rho0_c = {:.9g}",
                       ma.adm_mass, ma.central_density, mr.rest_mass, mr.central_density);
      }
-   }).doc("the star of tov.central_density (and the maximum-mass stars) as scalars");
+   }).doc("the star of tov.central_density if > 0 (and the maximum-mass stars) as scalars");
 
   b.schedule(Bin::output, "write_profile", [state](Context& ctx) {
      if (!state->star) return;

@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "../../../plugins/eos_piecewise_polytrope/piecewise_polytrope.cpp"
-#include "../../../plugins/eos_piecewise_polytrope/units.hpp"
+#include "piecewise_polytrope.hpp"
+#include "units.hpp"
 #include "bhnsid/core/errors.hpp"
 #include "family.hpp"
 #include "frozen_profile.hpp"
