@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bhnsid/interfaces/spacetime.hpp"
+#include "faces.hpp"
 
 namespace bhnsid::diagnostics {
 
@@ -14,30 +15,17 @@ const double* field(const Grid& grid, const char* name, int component = 0) {
   return grid.has_field(name) ? grid.data(grid.field_id(name), component, 0) : nullptr;
 }
 
-/// Solid-angle-weighted mean of rhat (chi - 1) over the outer faces (trapezoid weights along each face).
+/// Solid-angle-weighted mean of rhat (chi - 1) over the outer faces.
 double falloff_coefficient(const Grid& grid, const double* chi, std::array<double, 3> c) {
   const Level& lv = grid.finest();
-  const int last[3] = {lv.nx - 1, lv.ny - 1, lv.nz - 1};
   double sum = 0, weights = 0;
-  auto coordinate = [&](int axis, int index) { return axis == 0 ? lv.x(index) : axis == 1 ? lv.y(index) : lv.z(index); };
-  for (int axis = 0; axis < 3; ++axis)
-    for (int side = 0; side < 2; ++side) {
-      if (axis == 2 && side == 0 && lv.z_symmetry) continue;  // z = 0 is the symmetry plane, not a face
-      const int fixed = side == 0 ? 0 : last[axis];
-      const int a = (axis + 1) % 3, b = (axis + 2) % 3;
-      for (int ia = 0; ia <= last[a]; ++ia)
-        for (int ib = 0; ib <= last[b]; ++ib) {
-          int idx[3];
-          idx[axis] = fixed, idx[a] = ia, idx[b] = ib;
-          double w = (ia == 0 || ia == last[a]) ? 0.5 : 1.0;
-          w *= (ib == 0 || ib == last[b]) ? 0.5 : 1.0;
-          const double d[3] = {lv.x(idx[0]) - c[0], lv.y(idx[1]) - c[1], lv.z(idx[2]) - c[2]};
-          const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-          w *= std::fabs(coordinate(axis, fixed) - c[axis]) / (r * r * r);  // d(solid angle) / dA
-          sum += w * r * (chi[lv.at(idx[0], idx[1], idx[2])] - 1.0);
-          weights += w;
-        }
-    }
+  for_each_face_point(lv, [&](int axis, double, int i, int j, int k, double area) {
+    const double d[3] = {lv.x(i) - c[0], lv.y(j) - c[1], lv.z(k) - c[2]};
+    const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const double w = area * std::fabs(d[axis]) / (r * r * r);  // the solid angle the point sees
+    sum += w * r * (chi[lv.at(i, j, k)] - 1.0);
+    weights += w;
+  });
   return sum / weights;
 }
 

@@ -6,6 +6,7 @@
 #include "bhnsid/core/plugin.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "integrals.hpp"
+#include "surface.hpp"
 
 namespace bhnsid::diagnostics {
 namespace {
@@ -33,7 +34,21 @@ void declare(core::PluginBuilder& b) {
      ctx.set_scalar("adm_mass_falloff", m.adm_mass_falloff);
      ctx.log().info("M0 = {:.9g}, M_ADM = {:.9g} (volume), {:.9g} (1/r falloff at the faces)", m.rest_mass,
                     m.adm_mass_volume, m.adm_mass_falloff);
-   }).doc("rest_mass, adm_mass (volume integral) and adm_mass_falloff (Robin coefficient of chi), physical units");
+     if (puncture) {
+       const double chi = grid.interpolate(grid.data(grid.field_id(fields::chi), 0, 0), Parity{}, 0, puncture->position());
+       ctx.set_scalar("chi_puncture", chi);
+       ctx.set_scalar("puncture_mass", in.sigma * puncture->bare_mass() * chi);
+     }
+     if (grid.has_field(fields::ahat)) {
+       const SurfaceMomenta s = surface_momenta(grid, in.sigma);
+       ctx.set_scalar("momentum_surface_x", s.momentum_x);
+       ctx.set_scalar("momentum_surface_y", s.momentum_y);
+       ctx.set_scalar("angular_momentum_z", s.angular_momentum_z);
+       ctx.log().info("at the faces: P = ({:.9g}, {:.9g}), J_z = {:.9g}", s.momentum_x, s.momentum_y, s.angular_momentum_z);
+     }
+   }).doc("rest_mass, adm_mass (volume), adm_mass_falloff (Robin coefficient of chi); with a puncture chi_puncture "
+          "and puncture_mass = sigma Mhat chi(puncture); with Ahat the surface integrals momentum_surface_x/y and "
+          "angular_momentum_z; physical units");
 }
 
 }  // namespace

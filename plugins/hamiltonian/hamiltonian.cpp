@@ -49,7 +49,8 @@ OuterBoundary HamiltonianEquation::boundary() const {
 }
 
 std::vector<std::string> HamiltonianEquation::coefficients() const {
-  return {fields::aa, fields::rho0, fields::press, fields::enthalpy, fields::fluid_velocity};
+  // aa_hat is not restricted: its owner (momentum) fills every level, the Bowen-York part analytically.
+  return {fields::rho0, fields::press, fields::enthalpy, fields::fluid_velocity};
 }
 
 std::string HamiltonianEquation::failure_hint() const {

@@ -26,7 +26,8 @@ OuterBoundary LapseEquation::boundary() const {
 }
 
 std::vector<std::string> LapseEquation::coefficients() const {
-  return {fields::aa, fields::rho0, fields::press, fields::enthalpy, fields::fluid_velocity};
+  // aa_hat is not restricted: its owner (momentum) fills every level, the Bowen-York part analytically.
+  return {fields::rho0, fields::press, fields::enthalpy, fields::fluid_velocity};
 }
 
 Sources LapseEquation::sources(int level) const {

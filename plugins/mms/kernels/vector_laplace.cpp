@@ -3,44 +3,17 @@
 #include <Eigen/Dense>
 
 #include "bhnsid/interfaces/stencil.hpp"
+#include "bhnsid/interfaces/vector_sweep.hpp"
 
 namespace bhnsid::mms::kernels {
 
 namespace {
 
-// Point values are passed as this struct, never as a double[3]: GCC 12 does not vectorise an
-// omp simd loop that writes a local array through a pointer.
-struct Triple {
-  double x, y, z;
-};
-
-// One component's row and the eight rows around it that the stencil reads. With a base pointer per
-// row every access is p[i] or p[i +- 1]; GCC 12 gives up vectorising a loop that mixes f[i + 1 + sy]
-// with f[i + sy + sz].
-struct Rows {
-  const double *c, *ym, *yp, *zm, *zp, *ymzm, *ymzp, *ypzm, *ypzp;
-};
-
-Rows rows_at(const double* f, std::ptrdiff_t sy, std::ptrdiff_t sz) {
-  return {f, f - sy, f + sy, f - sz, f + sz, f - sy - sz, f - sy + sz, f + sy - sz, f + sy + sz};
-}
-
-// h^2 (lap V^a + (1/3) d^a d_j V^j) at point i of the rows. Forced inline: a call in the loop
-// body would keep the point loops from vectorising.
-[[gnu::always_inline]] inline Triple principal(const Rows& x, const Rows& y, const Rows& z, int i) {
-  auto lap = [i](const Rows& f) {
-    return f.c[i - 1] + f.c[i + 1] + f.ym[i] + f.yp[i] + f.zm[i] + f.zp[i] - 6.0 * f.c[i];
-  };
-  auto dxx = [i](const Rows& f) { return f.c[i - 1] + f.c[i + 1] - 2.0 * f.c[i]; };
-  auto dyy = [i](const Rows& f) { return f.ym[i] + f.yp[i] - 2.0 * f.c[i]; };
-  auto dzz = [i](const Rows& f) { return f.zm[i] + f.zp[i] - 2.0 * f.c[i]; };
-  auto dxy = [i](const Rows& f) { return 0.25 * (f.yp[i + 1] - f.ym[i + 1] - f.yp[i - 1] + f.ym[i - 1]); };
-  auto dxz = [i](const Rows& f) { return 0.25 * (f.zp[i + 1] - f.zm[i + 1] - f.zp[i - 1] + f.zm[i - 1]); };
-  auto dyz = [i](const Rows& f) { return 0.25 * (f.ypzp[i] - f.ypzm[i] - f.ymzp[i] + f.ymzm[i]); };
-  constexpr double third = 1.0 / 3.0;
-  return {lap(x) + third * (dxx(x) + dxy(y) + dxz(z)), lap(y) + third * (dxy(x) + dyy(y) + dyz(z)),
-          lap(z) + third * (dxz(x) + dyz(y) + dzz(z))};
-}
+using stencil::colour_in_two_passes;
+using stencil::principal;
+using stencil::Rows;
+using stencil::rows_at;
+using stencil::Triple;
 
 // Everything one row of either kernel reads: V around the row, s, rhs, n's y and z, and the
 // constants; copied into the loop's own frame so that nothing is reloaded per point.
@@ -110,22 +83,6 @@ void residual_rows(const Level& lv, ConstComponents v, ConstComponents s, double
       oz[i] = -keep * r.z;
     }
   });
-}
-
-// The mixed derivatives couple a point to points of its own colour at (i+-1, j+-1, k),
-// (i+-1, j, k+-1) and (i, j+-1, k+-1), so stencil::red_black_sweep, which relies on a colour
-// reading only the other one, would let threads race on the planes their slabs share. Instead each
-// colour runs in two passes over the planes, even then odd (counted from k_begin): no plane is
-// written while a neighbour reads it, and the Gauss-Seidel order within the colour is the same on
-// any number of threads. The price is four passes over memory per sweep instead of one; the
-// benchmark times the scalar kernels.
-template <class PlaneFn>
-void colour_in_two_passes(const Level& lv, int colour, PlaneFn&& plane) {
-  const int k0 = lv.k_begin(), k1 = lv.nz - 1;
-  for (int pass = 0; pass < 2; ++pass) {
-#pragma omp parallel for schedule(static)
-    for (int k = k0 + pass; k < k1; k += 2) plane(k, colour);
-  }
 }
 
 template <bool Coupled, bool HasRhs, bool Masked>

@@ -13,7 +13,7 @@
 namespace bhnsid::mms::kernels {
 
 using ConstComponents = std::array<const double*, 3>;
-using Components = std::array<double*, 3>;
+using Components = std::array<double*, 3>;  // as stencil::Components (vector_sweep.hpp)
 
 /// out^i = rhs^i - L(V)^i at every interior point (rhs nullptr: zero, else one array per
 /// component), 0 where fixed != 0.

@@ -5,6 +5,7 @@
 // ("puncture" capability, Puncture). All in hatted (sigma-rescaled) coordinates, physics-notes §1.3.
 #include <array>
 #include <cmath>
+#include <cstddef>
 
 #include "bhnsid/core/services.hpp"
 
@@ -17,6 +18,11 @@ inline constexpr const char* puncture_phi = "puncture_phi";  ///< hamiltonian: M
 inline constexpr const char* aa = "aa_hat";            ///< hamiltonian: sum_ij (Ahat^ij)^2, filled by a curvature plugin
 inline constexpr const char* eta = "eta";              ///< lapse: eta = alpha phi (eq. maxslice_hat)
 inline constexpr const char* shift = "beta";           ///< shift: beta^i (3 components, time-odd)
+inline constexpr const char* wvec = "wvec";            ///< momentum: the vector potential W^i (3 components, time-odd)
+/// momentum: Ahat^ij = Ahat_BY^ij + Zhat^ij, 6 components xx, xy, xz, yy, yz, zz (time-odd), on every
+/// level; it also fills aa_hat from it. Both are refreshed before each field solve.
+inline constexpr const char* ahat = "ahat";
+inline constexpr const char* excision_mask = "excision";  ///< shift: the cube about the puncture (a grid mask)
 inline constexpr const char* rho0 = "rho0";            ///< hydro: rest-mass density (never rescaled)
 inline constexpr const char* press = "press";          ///< hydro: pressure
 inline constexpr const char* enthalpy = "enthalpy";    ///< hydro: specific enthalpy h (1 in vacuum)
@@ -38,7 +44,9 @@ class Fluid : public core::Service {
   virtual std::array<double, 3> centre() const = 0;
 };
 
-/// The black hole (Brandt-Brugmann puncture with a Bowen-York momentum), hatted units.
+/// The black hole (Brandt-Brugmann puncture with a Bowen-York momentum), hatted units, published
+/// by a puncture plugin at STARTUP under "puncture". The values may change between outer
+/// iterations (the binary updates them); readers ask at every use.
 class Puncture : public core::Service {
  public:
   ~Puncture() override;
@@ -46,6 +54,35 @@ class Puncture : public core::Service {
   virtual std::array<double, 3> position() const = 0;   ///< xhat_BH, never a grid point
   virtual std::array<double, 3> momentum() const = 0;   ///< Phat_BH
 };
+
+/// Index of component (a, b) of a symmetric tensor stored as xx, xy, xz, yy, yz, zz.
+inline constexpr int sym_index(int a, int b) {
+  constexpr int table[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+  return table[a][b];
+}
+
+/// The Bowen-York tensor at x (physics-notes §2.6; hatted, with Phat):
+///   Ahat_BY^ij = 3/(2 r^2) [P^i n^j + P^j n^i - (delta^ij - n^i n^j)(P.n)],  n = (x - x_BH)/r.
+/// Traceless and divergence-free for r > 0; r = 0 is never asked (the puncture is off the grid).
+inline std::array<double, 6> bowen_york(const std::array<double, 3>& mom, const std::array<double, 3>& x_bh,
+                                        const std::array<double, 3>& x) {
+  const double d[3] = {x[0] - x_bh[0], x[1] - x_bh[1], x[2] - x_bh[2]};
+  const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2], r = std::sqrt(r2);
+  const double n[3] = {d[0] / r, d[1] / r, d[2] / r};
+  const double pn = mom[0] * n[0] + mom[1] * n[1] + mom[2] * n[2];
+  const double c = 1.5 / r2;
+  std::array<double, 6> out{};
+  for (int a = 0; a < 3; ++a)
+    for (int b = a; b < 3; ++b)
+      out[static_cast<std::size_t>(sym_index(a, b))] =
+          c * (mom[a] * n[b] + mom[b] * n[a] - ((a == b ? 1.0 : 0.0) - n[a] * n[b]) * pn);
+  return out;
+}
+
+/// sum_ij (A^ij)^2 of a symmetric tensor stored as xx, xy, xz, yy, yz, zz.
+inline double squared_norm(const std::array<double, 6>& t) {
+  return t[0] * t[0] + t[3] * t[3] + t[5] * t[5] + 2.0 * (t[1] * t[1] + t[2] * t[2] + t[4] * t[4]);
+}
 
 /// Matter projections of a perfect fluid at one point (physics-notes §1.2, §2.1): energy density
 /// rho_E = rho0 h W^2 - P and the trace S = rho0 h (W^2 - 1) + 3P, from W^2 = 1 / (1 - v^2) with
@@ -60,6 +97,11 @@ inline double lorentz_squared(double phi, double eta, double ux, double uy, doub
   const double phi3 = phi * phi * phi;
   const double v2 = phi3 * phi3 * (ux * ux + uy * uy + uz * uz) / (eta * eta);
   return v2 < 1.0 ? 1.0 / (1.0 - v2) : std::nan("");
+}
+
+/// The momentum density j^i = rho0 h W^2 v^i, v^i = (beta^i + V^i)/alpha (physics-notes §1.2).
+inline double momentum_density(double rho0, double enthalpy, double lorentz2, double u_i, double alpha) {
+  return rho0 * enthalpy * lorentz2 * u_i / alpha;
 }
 
 inline MatterProjections matter_projections(double rho0, double press, double enthalpy, double lorentz2) {
