@@ -5,6 +5,7 @@
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/plugin.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
+#include "axis.hpp"
 #include "integrals.hpp"
 #include "surface.hpp"
 
@@ -39,6 +40,7 @@ void declare(core::PluginBuilder& b) {
        ctx.set_scalar("chi_puncture", chi);
        ctx.set_scalar("puncture_mass", in.sigma * puncture->bare_mass() * chi);
      }
+     for (const auto& [key, value] : deviations(grid)) ctx.set_scalar(key, value);
      if (grid.has_field(fields::ahat)) {
        const SurfaceMomenta s = surface_momenta(grid, in.sigma);
        ctx.set_scalar("momentum_surface_x", s.momentum_x);
@@ -46,9 +48,13 @@ void declare(core::PluginBuilder& b) {
        ctx.set_scalar("angular_momentum_z", s.angular_momentum_z);
        ctx.log().info("at the faces: P = ({:.9g}, {:.9g}), J_z = {:.9g}", s.momentum_x, s.momentum_y, s.angular_momentum_z);
      }
-   }).doc("rest_mass, adm_mass (volume), adm_mass_falloff (Robin coefficient of chi); with a puncture chi_puncture "
+   }).doc("max deviations from flat space; rest_mass, adm_mass (volume), adm_mass_falloff (Robin coefficient of chi); with a puncture chi_puncture "
           "and puncture_mass = sigma Mhat chi(puncture); with Ahat the surface integrals momentum_surface_x/y and "
           "angular_momentum_z; physical units");
+
+  b.schedule(Bin::output, "axis", [](Context& ctx) {
+     ctx.write_output("fields_axis.tsv", axis_table(ctx.services().get<Grid>("grid")));
+   }).doc("fields_axis.tsv: chi, eta, W, beta, rho0 along the x axis (also after a failure)");
 }
 
 }  // namespace

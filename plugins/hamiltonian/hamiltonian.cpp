@@ -38,14 +38,7 @@ HamiltonianEquation::HamiltonianEquation(Grid& grid, const Fluid* fluid, const P
 }
 
 OuterBoundary HamiltonianEquation::boundary() const {
-  OuterBoundary b;
-  b.kind = OuterBoundary::Kind::robin;
-  b.u_inf = {1.0};
-  if (fluid_)
-    b.centre = fluid_->centre();
-  else if (puncture_)
-    b.centre = puncture_->position();
-  return b;
+  return {OuterBoundary::Kind::robin, {1.0}, falloff_centre(fluid_, puncture_)};
 }
 
 std::vector<std::string> HamiltonianEquation::coefficients() const {
@@ -65,21 +58,12 @@ Sources HamiltonianEquation::sources(int level) const {
   Sources s;
   s.puncture_phi = grid_.data(puncture_phi_, 0, level);
   s.aa = grid_.data(aa_, 0, level);
-  s.rho0 = grid_.data(grid_.field_id(fields::rho0), 0, level);
-  s.press = grid_.data(grid_.field_id(fields::press), 0, level);
-  s.enthalpy = grid_.data(grid_.field_id(fields::enthalpy), 0, level);
-  s.sigma2 = fluid_ ? fluid_->sigma() * fluid_->sigma() : 1.0;
+  s.matter = matter_arrays(grid_, fluid_, level);
   s.matter_scale = matter_scale_;
   if (moving()) {
     if (!grid_.has_field(fields::eta))
       throw core::RunFailure("hamiltonian: moving matter needs the lapse (eta) for its Lorentz factor; add the lapse plugin");
     s.eta = grid_.data(grid_.field_id(fields::eta), 0, level);
-    const int vel = grid_.field_id(fields::fluid_velocity);
-    const int beta = grid_.has_field(fields::shift) ? grid_.field_id(fields::shift) : -1;
-    for (int c = 0; c < 3; ++c) {
-      s.velocity[c] = grid_.data(vel, c, level);
-      s.shift[c] = beta >= 0 ? grid_.data(beta, c, level) : nullptr;
-    }
   }
   return s;
 }

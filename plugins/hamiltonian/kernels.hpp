@@ -16,13 +16,8 @@ namespace bhnsid::hamiltonian {
 struct Sources {
   const double* puncture_phi = nullptr;
   const double* aa = nullptr;
-  const double* rho0 = nullptr;
-  const double* press = nullptr;
-  const double* enthalpy = nullptr;
-  const double* eta = nullptr;
-  const double* velocity[3] = {nullptr, nullptr, nullptr};
-  const double* shift[3] = {nullptr, nullptr, nullptr};
-  double sigma2 = 1;        ///< sigma^2: the matter terms of the hatted equations carry it (§1.3)
+  const double* eta = nullptr;  ///< moving matter only (W needs alpha)
+  MatterArrays matter;
   double matter_scale = 1;  ///< 1 except in the IRE sensitivity test (one coefficient times 1 + eps)
 };
 
@@ -33,9 +28,9 @@ inline double lorentz2_at(const Sources& s, std::ptrdiff_t idx, double phi) {
     (void)s, (void)idx, (void)phi;
     return 1.0;
   } else {
-    double u[3];
-    for (int c = 0; c < 3; ++c) u[c] = s.velocity[c][idx] + (s.shift[c] ? s.shift[c][idx] : 0.0);
-    return lorentz_squared(phi, s.eta[idx], u[0], u[1], u[2]);
+    const MatterArrays& m = s.matter;
+    return lorentz_squared(phi, s.eta[idx], m.coordinate_velocity(0, idx), m.coordinate_velocity(1, idx),
+                           m.coordinate_velocity(2, idx));
   }
 }
 
@@ -53,11 +48,12 @@ struct HamiltonianTerm {
     const double inv7 = inv4 * inv_phi * inv_phi * inv_phi;
     const double aa = s.aa[idx];
     double value = 0.125 * aa * inv7, slope = -0.875 * aa * inv7 * inv_phi;
-    const double rho0 = s.rho0[idx];
+    const MatterArrays& m = s.matter;
+    const double rho0 = m.rho0[idx];
     if (rho0 > 0) {
-      const double e = matter_projections(rho0, s.press[idx], s.enthalpy[idx], lorentz2_at<Moving>(s, idx, phi)).energy;
+      const double e = matter_projections(rho0, m.press[idx], m.enthalpy[idx], lorentz2_at<Moving>(s, idx, phi)).energy;
       const double phi4 = 1.0 / inv4;
-      const double c = 2.0 * std::numbers::pi * s.sigma2 * s.matter_scale * e * phi4;
+      const double c = 2.0 * std::numbers::pi * m.sigma2 * s.matter_scale * e * phi4;
       value += c * phi;
       slope += 5.0 * c;
     }

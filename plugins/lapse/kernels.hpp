@@ -18,12 +18,7 @@ struct Sources {
   const double* chi = nullptr;
   const double* puncture_phi = nullptr;
   const double* aa = nullptr;
-  const double* rho0 = nullptr;
-  const double* press = nullptr;
-  const double* enthalpy = nullptr;
-  const double* velocity[3] = {nullptr, nullptr, nullptr};
-  const double* shift[3] = {nullptr, nullptr, nullptr};
-  double sigma2 = 1;        ///< sigma^2 on the matter term (physics-notes §1.3)
+  MatterArrays matter;
   double matter_scale = 1;  ///< 1 except in the IRE sensitivity test
 };
 
@@ -38,16 +33,15 @@ struct LapseTerm {
     const double inv_phi = 1.0 / phi;
     const double inv4 = (inv_phi * inv_phi) * (inv_phi * inv_phi);
     double k = 0.875 * s.aa[idx] * inv4 * inv4;
-    const double rho0 = s.rho0[idx];
+    const MatterArrays& m = s.matter;
+    const double rho0 = m.rho0[idx];
     if (rho0 > 0) {
       double lorentz2 = 1.0;
-      if constexpr (Moving) {
-        double u[3];
-        for (int c = 0; c < 3; ++c) u[c] = s.velocity[c][idx] + (s.shift[c] ? s.shift[c][idx] : 0.0);
-        lorentz2 = lorentz_squared(phi, eta, u[0], u[1], u[2]);
-      }
-      const MatterProjections m = matter_projections(rho0, s.press[idx], s.enthalpy[idx], lorentz2);
-      k += 2.0 * std::numbers::pi * s.sigma2 * s.matter_scale * (m.energy + 2.0 * m.trace) / inv4;
+      if constexpr (Moving)
+        lorentz2 = lorentz_squared(phi, eta, m.coordinate_velocity(0, idx), m.coordinate_velocity(1, idx),
+                                   m.coordinate_velocity(2, idx));
+      const MatterProjections p = matter_projections(rho0, m.press[idx], m.enthalpy[idx], lorentz2);
+      k += 2.0 * std::numbers::pi * m.sigma2 * s.matter_scale * (p.energy + 2.0 * p.trace) / inv4;
     }
     return {-eta * k, -k};
   }

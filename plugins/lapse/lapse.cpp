@@ -15,14 +15,7 @@ LapseEquation::LapseEquation(Grid& grid, const Fluid* fluid, const Puncture* pun
 }
 
 OuterBoundary LapseEquation::boundary() const {
-  OuterBoundary b;
-  b.kind = OuterBoundary::Kind::robin;
-  b.u_inf = {1.0};
-  if (fluid_)
-    b.centre = fluid_->centre();
-  else if (puncture_)
-    b.centre = puncture_->position();
-  return b;
+  return {OuterBoundary::Kind::robin, {1.0}, falloff_centre(fluid_, puncture_)};
 }
 
 std::vector<std::string> LapseEquation::coefficients() const {
@@ -35,19 +28,8 @@ Sources LapseEquation::sources(int level) const {
   s.chi = grid_.data(grid_.field_id(fields::chi), 0, level);
   s.puncture_phi = grid_.data(grid_.field_id(fields::puncture_phi), 0, level);
   s.aa = grid_.data(grid_.field_id(fields::aa), 0, level);
-  s.rho0 = grid_.data(grid_.field_id(fields::rho0), 0, level);
-  s.press = grid_.data(grid_.field_id(fields::press), 0, level);
-  s.enthalpy = grid_.data(grid_.field_id(fields::enthalpy), 0, level);
-  s.sigma2 = fluid_ ? fluid_->sigma() * fluid_->sigma() : 1.0;
+  s.matter = matter_arrays(grid_, fluid_, level);
   s.matter_scale = matter_scale_;
-  if (moving()) {
-    const int vel = grid_.field_id(fields::fluid_velocity);
-    const int beta = grid_.has_field(fields::shift) ? grid_.field_id(fields::shift) : -1;
-    for (int c = 0; c < 3; ++c) {
-      s.velocity[c] = grid_.data(vel, c, level);
-      s.shift[c] = beta >= 0 ? grid_.data(beta, c, level) : nullptr;
-    }
-  }
   return s;
 }
 

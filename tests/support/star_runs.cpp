@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
+#include <utility>
 
 #include "process.hpp"
 
@@ -49,6 +51,16 @@ StarRun run_static_star(int n, double dx, const std::vector<std::string>& sets, 
     }
   }
   return run;
+}
+
+std::vector<double> fixed_source_errors(double (*value)(const StarRun&), double reference) {
+  std::vector<double> errors;
+  for (const auto& [n, dx] : {std::pair{32, 0.12}, std::pair{64, 0.06}, std::pair{128, 0.03}}) {
+    const StarRun r = run_static_star(n, dx, {"hydro_corotating.iterate=false"});
+    if (r.exit_code != 0) throw std::runtime_error("the fixed-source run failed:\n" + r.output);
+    errors.push_back(value(r) - reference);
+  }
+  return errors;
 }
 
 double tov01::bernoulli_constant() { return std::sqrt(1 - 2 * adm_mass / radius_areal); }

@@ -1,6 +1,7 @@
 #pragma once
 // Runs of parfiles/static_star.yaml through the real executable, and what the tests read back.
 #include <map>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,11 @@ struct StarRun {
 /// Runs the static-star parfile with grid.n = n, grid.dx = dx and the extra --set overrides.
 StarRun run_static_star(int n, double dx, const std::vector<std::string>& sets = {},
                         const std::string& parfile = "static_star.yaml");
+
+/// The fixed-source solve (hydro_corotating.iterate = false: the TOV density held at sigma = R_iso)
+/// at dx = 0.12, 0.06, 0.03 on r_c = 1.92, returning value(run) - reference for each; REQUIREs every
+/// run to succeed.
+std::vector<double> fixed_source_errors(double (*value)(const StarRun&), double reference);
 
 /// The isolated TOV star of Gamma = 2, K = 1, rho0_c = 0.1, from the independent Python reference
 /// /work/shared/physics-checks/tov.py (physics-notes §6.1 and §9 T1), which the tov plugin's tests

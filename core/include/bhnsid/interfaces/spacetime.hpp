@@ -8,6 +8,7 @@
 #include <cstddef>
 
 #include "bhnsid/core/services.hpp"
+#include "bhnsid/interfaces/grid.hpp"
 
 namespace bhnsid {
 
@@ -54,6 +55,50 @@ class Puncture : public core::Service {
   virtual std::array<double, 3> position() const = 0;   ///< xhat_BH, never a grid point
   virtual std::array<double, 3> momentum() const = 0;   ///< Phat_BH
 };
+
+/// Centre of the 1/r falloff at the outer faces for chi and eta (physics-notes §5.2): the star's
+/// density maximum if there is a fluid, else the puncture, else the origin.
+inline std::array<double, 3> falloff_centre(const Fluid* fluid, const Puncture* puncture) {
+  if (fluid) return fluid->centre();
+  if (puncture) return puncture->position();
+  return {0.0, 0.0, 0.0};
+}
+
+/// The matter arrays of one level as every field equation reads them. Without a fluid the fields
+/// still exist (the hamiltonian plugin registers them, zero) and sigma = 1; velocity and shift are
+/// set only for moving matter (shift null when no shift equation is active).
+struct MatterArrays {
+  const double* rho0 = nullptr;
+  const double* press = nullptr;
+  const double* enthalpy = nullptr;
+  const double* velocity[3] = {nullptr, nullptr, nullptr};
+  const double* shift[3] = {nullptr, nullptr, nullptr};
+  double sigma2 = 1;  ///< sigma^2: the matter terms of the hatted equations carry it (§1.3)
+  bool moving = false;
+
+  /// beta^i + V^i at array index idx (moving matter only).
+  double coordinate_velocity(int c, std::ptrdiff_t idx) const {
+    return velocity[c][idx] + (shift[c] ? shift[c][idx] : 0.0);
+  }
+};
+
+inline MatterArrays matter_arrays(const Grid& grid, const Fluid* fluid, int level) {
+  MatterArrays m;
+  m.rho0 = grid.data(grid.field_id(fields::rho0), 0, level);
+  m.press = grid.data(grid.field_id(fields::press), 0, level);
+  m.enthalpy = grid.data(grid.field_id(fields::enthalpy), 0, level);
+  m.sigma2 = fluid ? fluid->sigma() * fluid->sigma() : 1.0;
+  m.moving = fluid && fluid->moving();
+  if (m.moving) {
+    const int vel = grid.field_id(fields::fluid_velocity);
+    const int beta = grid.has_field(fields::shift) ? grid.field_id(fields::shift) : -1;
+    for (int c = 0; c < 3; ++c) {
+      m.velocity[c] = grid.data(vel, c, level);
+      m.shift[c] = beta >= 0 ? grid.data(beta, c, level) : nullptr;
+    }
+  }
+  return m;
+}
 
 /// Index of component (a, b) of a symmetric tensor stored as xx, xy, xz, yy, yz, zz.
 inline constexpr int sym_index(int a, int b) {
