@@ -19,9 +19,11 @@ std::vector<RayStencil> robin_stencils(const Level& lv, const std::array<double,
       X[a] = xb[a] - centre[a];
       reach = std::max(reach, std::fabs(X[a]));
     }
-    if (reach < 2 * lv.dx)
+    // The ray needs a point one cell in (s > 0) with room around it; 1.5 cells keeps s >= 1/3 and lets
+    // a centre just off the origin pass on a coarsest level of 4 intervals (face 2 cells away).
+    if (reach < 1.5 * lv.dx)
       throw core::RunFailure(fmt::format(
-          "multigrid: the Robin centre ({}, {}, {}) is within 2 cells of the face point ({}, {}, {}) on level {}",
+          "multigrid: the Robin centre ({}, {}, {}) is within 1.5 cells of the face point ({}, {}, {}) on level {}",
           centre[0], centre[1], centre[2], xb[0], xb[1], xb[2], lv.index));
     RayStencil row;
     row.point = lv.at(i, j, k);

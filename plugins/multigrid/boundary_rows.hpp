@@ -42,7 +42,7 @@ struct RayStencil {
 };
 
 /// The rows of every face point of a level for a condition about `centre`; throws
-/// core::RunFailure when the centre is closer than 2 cells to a face.
+/// core::RunFailure when the centre is closer than 1.5 cells to a face.
 std::vector<RayStencil> robin_stencils(const Level& lv, const std::array<double, 3>& centre);
 
 /// res = rhs - B(u) at the face points (rhs may be nullptr: zero); 0 at held points.

@@ -1,0 +1,121 @@
+#include "momentum.hpp"
+
+#include <fmt/format.h>
+
+#include "bhnsid/core/errors.hpp"
+
+namespace bhnsid::momentum {
+
+using core::TensorKind;
+
+namespace {
+
+const std::vector<TensorKind> scalar{TensorKind::scalar};
+const std::vector<TensorKind> vector{TensorKind::vector_x, TensorKind::vector_y, TensorKind::vector_z};
+const std::vector<TensorKind> symmetric{TensorKind::tensor_xx, TensorKind::tensor_xy, TensorKind::tensor_xz,
+                                        TensorKind::tensor_yy, TensorKind::tensor_yz, TensorKind::tensor_zz};
+
+/// Calls fn(MomentumLower<matter, shift>{s}): no matter, matter without a shift, matter with one.
+template <class Fn>
+void with_lower(const Sources& s, bool matter, Fn&& fn) {
+  if (!matter)
+    fn(MomentumLower<false, false>{s});
+  else if (s.shift[0])
+    fn(MomentumLower<true, true>{s});
+  else
+    fn(MomentumLower<true, false>{s});
+}
+
+int required_field(const Grid& grid, const char* name) {
+  if (!grid.has_field(name))
+    throw core::RunFailure(fmt::format(
+        "momentum: the field '{}' is missing at SETUP; the momentum constraint reads chi, eta and puncture_phi, "
+        "registered by the hamiltonian plugin (chi, puncture_phi) and the lapse plugin (eta): add them to plugins "
+        "(or, in a test, a plugin that registers '{}' before momentum.setup)",
+        name, name));
+  return grid.field_id(name);
+}
+
+}  // namespace
+
+MomentumEquation::MomentumEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, double source_scale)
+    : grid_(grid), fluid_(fluid), puncture_(puncture), source_scale_(source_scale) {
+  chi_ = required_field(grid, fields::chi);
+  eta_ = required_field(grid, fields::eta);
+  puncture_phi_ = required_field(grid, fields::puncture_phi);
+  w_ = grid.add_field(fields::wvec, vector, core::TimeParity::odd);
+  ahat_ = grid.add_field(fields::ahat, symmetric, core::TimeParity::odd);
+  // Registered by the hamiltonian plugin when it is active; the same kinds return that field.
+  aa_ = grid.add_field(fields::aa, scalar);
+  if (fluid_) {
+    // As the hamiltonian plugin registers them (registering an existing field again returns it).
+    rho0_ = grid.add_field(fields::rho0, scalar);
+    grid.add_field(fields::press, scalar);
+    enthalpy_ = grid.add_field(fields::enthalpy, scalar);
+    velocity_ = grid.add_field(fields::fluid_velocity, vector, core::TimeParity::odd);
+  }
+}
+
+OuterBoundary MomentumEquation::boundary() const {
+  OuterBoundary b;
+  b.kind = OuterBoundary::Kind::robin;
+  b.u_inf = {0.0, 0.0, 0.0};
+  b.centre = {0.0, 0.0, 0.0};
+  return b;
+}
+
+std::vector<std::string> MomentumEquation::coefficients() const {
+  // chi and eta are the hamiltonian's and the lapse's unknowns (the solver keeps them on every level)
+  // and puncture_phi is analytic on every level, so only the fluid is restricted.
+  if (!fluid_) return {};
+  return {fields::rho0, fields::enthalpy, fields::fluid_velocity};
+}
+
+Sources MomentumEquation::sources(int level) const {
+  const Level& lv = grid_.level(level);
+  Sources s;
+  s.chi = grid_.data(chi_, 0, level);
+  s.eta = grid_.data(eta_, 0, level);
+  s.puncture_phi = grid_.data(puncture_phi_, 0, level);
+  s.sy = lv.sy;
+  s.sz = lv.sz;
+  s.inv_2h = 0.5 / lv.dx;
+  s.source_scale = source_scale_;
+  if (fluid_) {
+    s.sigma2 = fluid_->sigma() * fluid_->sigma();
+    s.rho0 = grid_.data(rho0_, 0, level);
+    s.enthalpy = grid_.data(enthalpy_, 0, level);
+    // The shift plugin may register beta after this equation was built: looked up at every call.
+    const int beta = grid_.has_field(fields::shift) ? grid_.field_id(fields::shift) : -1;
+    for (int c = 0; c < 3; ++c) {
+      s.velocity[c] = grid_.data(velocity_, c, level);
+      s.shift[c] = beta >= 0 ? grid_.data(beta, c, level) : nullptr;
+    }
+  }
+  return s;
+}
+
+void MomentumEquation::residual(const RelaxArgs& args, double* const* out) const {
+  const int l = args.level;
+  const stencil::ConstComponents w{grid_.data(w_, 0, l), grid_.data(w_, 1, l), grid_.data(w_, 2, l)};
+  const Sources s = sources(l);
+  with_lower(s, fluid_ != nullptr, [&](const auto& lower) {
+    stencil::vector_residual_any(grid_.level(l), w, args.rhs, args.fixed, {out[0], out[1], out[2]}, lower);
+  });
+}
+
+void MomentumEquation::relax(const RelaxArgs& args) const {
+  const int l = args.level;
+  const stencil::Components w{grid_.data(w_, 0, l), grid_.data(w_, 1, l), grid_.data(w_, 2, l)};
+  const Sources s = sources(l);
+  const stencil::Mirror mirror = [this, l] { grid_.fill_ghosts(w_, l); };
+  with_lower(s, fluid_ != nullptr, [&](const auto& lower) {
+    stencil::vector_relax_any(grid_.level(l), w, args.rhs, args.fixed, args.omega, mirror, lower);
+  });
+}
+
+CurvatureChange MomentumEquation::fill_curvature() const {
+  return momentum::fill_curvature(grid_, CurvatureFields{w_, chi_, eta_, ahat_, aa_}, puncture_);
+}
+
+}  // namespace bhnsid::momentum

@@ -1,0 +1,83 @@
+// The momentum plugin: the momentum constraint for the vector potential W^i (eq. mom_ansatz_hat),
+// published as the EllipticEquation "equation.momentum" that the multigrid solver relaxes with the
+// others, and the owner of Ahat^ij = Ahat_BY^ij + Zhat^ij and aa_hat on every level.
+#include <fmt/format.h>
+
+#include <memory>
+
+#include "bhnsid/core/context.hpp"
+#include "bhnsid/core/plugin.hpp"
+#include "momentum.hpp"
+
+namespace bhnsid::momentum {
+namespace {
+
+using core::Bin;
+using core::Context;
+
+struct State {
+  std::shared_ptr<MomentumEquation> equation;
+  CurvatureChange last;  ///< of the fill after the last solve
+};
+
+void declare(core::PluginBuilder& b) {
+  auto state = std::make_shared<State>();
+  b.require("grid");
+  b.require("elliptic_solver");
+  b.implements("equation.momentum");
+
+  b.real("test_source_scale")
+      .doc("TEST ONLY: multiplies the matter term 16 pi sigma^2 eta phi^10 chi^-7 J^i by this factor, so that "
+           "tests can show that a one-coefficient error is detected; 1 for physics")
+      .default_value(1.0);
+  b.real("curvature_tolerance")
+      .doc("the loop goes on until the Ahat that the equations were solved with (filled before the solve) and the "
+           "Ahat of the solved W differ by at most this times max |Zhat| (or by 1e-13) on the finest level")
+      .default_value(1e-5)
+      .greater_than(0);
+
+  b.schedule(Bin::setup, "setup", [state](Context& ctx) {
+     auto& grid = ctx.services().get<Grid>("grid");
+     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* puncture = ctx.services().find<Puncture>("puncture");
+     state->equation = std::make_shared<MomentumEquation>(grid, fluid, puncture, ctx.params().real("test_source_scale"));
+     ctx.publish<EllipticEquation>("equation.momentum", state->equation);
+     ctx.log().info("momentum constraint for W^i: {}, {}", fluid ? "with matter" : "vacuum",
+                    puncture ? "with a Bowen-York puncture" : "no black hole");
+   })
+      .after("hamiltonian.setup")
+      .after("lapse.setup")
+      .doc("check that chi, eta, puncture_phi exist; register wvec, ahat, aa_hat; publish the equation");
+
+  b.schedule(Bin::solve, "curvature", [state](Context&) { state->equation->fill_curvature(); })
+      .before("multigrid.solve")
+      .doc("ahat = Bowen-York + Zhat and aa_hat on every level, for the equations solved next");
+
+  b.schedule(Bin::solve, "curvature_after_solve", [state](Context& ctx) {
+     state->last = state->equation->fill_curvature();
+     ctx.set_scalar("momentum_ahat_change", state->last.max_change);
+     ctx.set_scalar("momentum_zhat_max", state->last.max_zhat);
+   })
+      .after("multigrid.solve")
+      .doc("ahat and aa_hat again from the solved W, chi, eta, so that the output is consistent");
+
+  b.check("curvature_consistent", [state](Context& ctx) {
+     const double tol = ctx.params().real("curvature_tolerance");
+     const CurvatureChange& c = state->last;
+     // The absolute floor covers W = 0 up to rounding (vacuum), where max |Zhat| is no scale.
+     return core::Convergence{c.max_change <= tol * c.max_zhat || c.max_change <= 1e-13,
+                              fmt::format("Ahat moved by {:.3e} in the solve (max |Zhat| {:.3e}, tol {:.1e} relative)",
+                                          c.max_change, c.max_zhat, tol)};
+   }).doc("the equations saw the Ahat of the solved W: Ahat changed by at most curvature_tolerance max |Zhat| in the last solve");
+}
+
+}  // namespace
+}  // namespace bhnsid::momentum
+
+extern "C" BHNSID_EXPORT const BhnsidPluginInfo* bhnsid_plugin_info() {
+  static const BhnsidPluginInfo info{BHNSID_ABI_VERSION, "momentum", "1.0",
+                                     "momentum constraint for the vector potential W^i (eq. mom_ansatz_hat) and Ahat^ij, "
+                                     "an equation.* service",
+                                     &bhnsid::momentum::declare};
+  return &info;
+}
