@@ -26,4 +26,15 @@ SurfaceMomenta surface_momenta(const Grid& grid, double sigma) {
   return {sigma * c * px, sigma * c * py, sigma * sigma * c * jz};
 }
 
+double outside_aa_mass(const Grid& grid, double sigma, const std::array<double, 3>& centre) {
+  const Level& lv = grid.finest();
+  const double* aa = grid.data(grid.field_id(fields::aa), 0, 0);
+  double sum = 0;
+  for_each_face_point(lv, [&](int axis, double sign, int i, int j, int k, double area) {
+    const double x[3] = {lv.x(i), lv.y(j), lv.z(k)};
+    sum += aa[lv.at(i, j, k)] * (x[axis] - centre[static_cast<std::size_t>(axis)]) * sign * area;
+  });
+  return sigma * sum / (16.0 * std::numbers::pi);
+}
+
 }  // namespace bhnsid::diagnostics

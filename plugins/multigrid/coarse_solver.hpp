@@ -15,6 +15,9 @@ class FasSolver;
 class CoarseSolver {
  public:
   explicit CoarseSolver(FasSolver& solver) : solver_(solver) {}
+  /// Forgets the indexed unknowns and the factorisation: the held points (excision masks) may
+  /// change between solves, e.g. when the black hole moves.
+  void reset() { level_ = -1; }
   void solve(int level);
 
  private:

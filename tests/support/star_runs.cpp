@@ -53,6 +53,48 @@ StarRun run_static_star(int n, double dx, const std::vector<std::string>& sets, 
   return run;
 }
 
+double ParfileRun::scalar(const std::string& key) const {
+  const auto it = scalars.find(key);
+  if (it == scalars.end()) throw std::out_of_range("summary.json has no scalar '" + key + "'\n" + output);
+  return it->second;
+}
+
+ParfileRun run_parfile(const std::string& parfile, const std::vector<std::string>& sets) {
+  TempDir dir;
+  const fs::path out = dir.path() / "run";
+  std::vector<std::string> args{"run", (source_dir() / "parfiles" / parfile).string(), "--output", out.string()};
+  for (const std::string& s : sets) {
+    args.push_back("--set");
+    args.push_back(s);
+  }
+  const ProcessResult r = run_bhnsid(args);
+  ParfileRun run;
+  run.exit_code = r.exit_code;
+  run.output = r.out + r.err;
+  if (fs::exists(out / "summary.json")) {
+    const auto summary = nlohmann::json::parse(read_file(out / "summary.json"));
+    run.status = summary.value("status", "");
+    for (const auto& [key, value] : summary["scalars"].items()) run.scalars[key] = value.get<double>();
+  }
+  if (fs::exists(out / "fields_axis.tsv")) {
+    std::istringstream lines(read_file(out / "fields_axis.tsv"));
+    std::string line, name;
+    std::getline(lines, line);
+    std::istringstream head(line.substr(2));  // "# x\tchi..."
+    std::vector<std::string> names;
+    while (head >> name) names.push_back(name);
+    while (std::getline(lines, line)) {
+      std::istringstream row(line);
+      for (const std::string& n : names) {
+        double v;
+        row >> v;
+        run.axis[n].push_back(v);
+      }
+    }
+  }
+  return run;
+}
+
 std::vector<double> fixed_source_errors(double (*value)(const StarRun&), double reference) {
   std::vector<double> errors;
   for (const auto& [n, dx] : {std::pair{32, 0.12}, std::pair{64, 0.06}, std::pair{128, 0.03}}) {

@@ -16,6 +16,17 @@ struct StarRun {
   bool has_axis = false;
 };
 
+/// Any run of a parameter file under parfiles/ with --set overrides, and the diagnostics plugin's
+/// fields_axis.tsv as columns by name ("x", "chi", "beta_y", ...; empty when absent).
+struct ParfileRun {
+  int exit_code = -1;
+  std::string output, status;
+  std::map<std::string, double> scalars;
+  std::map<std::string, std::vector<double>> axis;
+  double scalar(const std::string& key) const;  ///< throws std::out_of_range naming the key when absent
+};
+ParfileRun run_parfile(const std::string& parfile, const std::vector<std::string>& sets);
+
 /// Runs the static-star parfile with grid.n = n, grid.dx = dx and the extra --set overrides.
 StarRun run_static_star(int n, double dx, const std::vector<std::string>& sets = {},
                         const std::string& parfile = "static_star.yaml");

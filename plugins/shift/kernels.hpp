@@ -1,0 +1,110 @@
+#pragma once
+// Point functions of the minimal-distortion shift, eq. mindist_hat (physics-notes §2.5; the printed
+// d_j phi is the hatted derivative, §1.3):
+//   lap beta^i + (1/3) d_i (d_k beta^k)
+//     = -(6/phi) [ (d_j beta^i + d_i beta^j) dphi_j - (2/3) dphi_i (d_k beta^k) ]
+//       + 2 phi^-6 Ahat^ij d_j alpha + 16 pi sigma^2 alpha phi^4 J^i,
+//   phi = puncture_phi + chi,  dphi_i = -Mhat n_i/(2 r^2) + d_i chi,
+//   alpha = eta/phi,  d_i alpha = (d_i eta - alpha dphi_i)/phi,
+//   J^i = rho0 h W^2 v^i,  v^i = (beta^i + V^i)/alpha.
+// The right-hand side enters core's vector sweep (stencil::vector_residual/relax) as the lower-order
+// term N = -RHS of L(beta) = lap beta + (1/3) grad div beta + N = 0.
+#include <cstddef>
+#include <numbers>
+
+#include "bhnsid/interfaces/spacetime.hpp"
+#include "bhnsid/interfaces/vector_sweep.hpp"
+
+namespace bhnsid::shift {
+
+using stencil::Rows;
+using stencil::Triple;
+
+/// Arrays of one level the lower-order term reads, and the constants it needs.
+struct Sources {
+  const double* chi = nullptr;           ///< regular part of phi (neighbours read: d_i chi)
+  const double* eta = nullptr;           ///< alpha phi (neighbours read: d_i eta)
+  const double* puncture_phi = nullptr;  ///< Mhat/(2 r), hole only
+  const double* dphi_puncture[3] = {nullptr, nullptr, nullptr};  ///< -Mhat n_i/(2 r^2), hole only
+  const double* ahat[6] = {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};  ///< xx, xy, xz, yy, yz, zz
+  const double* rho0 = nullptr;          ///< matter only
+  const double* enthalpy = nullptr;      ///< matter only
+  const double* velocity[3] = {nullptr, nullptr, nullptr};  ///< the fluid's V^i, matter only
+  double sigma2 = 1;        ///< sigma^2 on the matter term (physics-notes §1.3)
+  double source_scale = 1;  ///< TEST ONLY factor on the Ahat term; 1 for physics
+  double inv_2h = 0;        ///< 1/(2 dx) of the level: centred first derivatives
+  std::ptrdiff_t sy = 0, sz = 0;  ///< the level's strides
+};
+
+/// N^i = -RHS^i at one point, for stencil::vector_residual_any / vector_relax_any. Hole: add the
+/// analytic puncture parts of phi and dphi (without a puncture both are zero and are not read).
+/// Matter: add the momentum-density term (without the hydro service there is none).
+template <bool Hole, bool Matter>
+struct ShiftLower {
+  Sources s;
+
+  [[gnu::always_inline]] Triple at(std::ptrdiff_t idx, int i, const Rows& x, const Rows& y, const Rows& z) const {
+    const double h = s.inv_2h;
+    // d_j beta^i: bx = (d_x beta^x, d_y beta^x, d_z beta^x), and so on.
+    const Triple bx = stencil::gradient(x, i, h), by = stencil::gradient(y, i, h), bz = stencil::gradient(z, i, h);
+    const double* c = s.chi + idx;
+    const double* e = s.eta + idx;
+    const std::ptrdiff_t sy = s.sy, sz = s.sz;
+    double phi = c[0];
+    double dpx = h * (c[1] - c[-1]), dpy = h * (c[sy] - c[-sy]), dpz = h * (c[sz] - c[-sz]);
+    if constexpr (Hole) {
+      phi += s.puncture_phi[idx];
+      dpx += s.dphi_puncture[0][idx];
+      dpy += s.dphi_puncture[1][idx];
+      dpz += s.dphi_puncture[2][idx];
+    }
+    const double inv_phi = 1.0 / phi;
+    const double alpha = e[0] * inv_phi;
+    const double dax = (h * (e[1] - e[-1]) - alpha * dpx) * inv_phi;
+    const double day = (h * (e[sy] - e[-sy]) - alpha * dpy) * inv_phi;
+    const double daz = (h * (e[sz] - e[-sz]) - alpha * dpz) * inv_phi;
+
+    // (d_j beta^i + d_i beta^j) dphi_j - (2/3) dphi_i div beta
+    const double div = bx.x + by.y + bz.z;
+    const double sxy = bx.y + by.x, sxz = bx.z + bz.x, syz = by.z + bz.y;
+    const double third2 = 2.0 / 3.0;
+    const double shear_x = 2.0 * bx.x * dpx + sxy * dpy + sxz * dpz - third2 * dpx * div;
+    const double shear_y = sxy * dpx + 2.0 * by.y * dpy + syz * dpz - third2 * dpy * div;
+    const double shear_z = sxz * dpx + syz * dpy + 2.0 * bz.z * dpz - third2 * dpz * div;
+
+    // 2 phi^-6 Ahat^ij d_j alpha (times the test-only scale)
+    const double axx = s.ahat[0][idx], axy = s.ahat[1][idx], axz = s.ahat[2][idx], ayy = s.ahat[3][idx],
+                 ayz = s.ahat[4][idx], azz = s.ahat[5][idx];
+    const double inv_phi2 = inv_phi * inv_phi;
+    const double ka = 2.0 * s.source_scale * inv_phi2 * inv_phi2 * inv_phi2;
+    const double six_phi = 6.0 * inv_phi;
+    Triple n{six_phi * shear_x - ka * (axx * dax + axy * day + axz * daz),
+             six_phi * shear_y - ka * (axy * dax + ayy * day + ayz * daz),
+             six_phi * shear_z - ka * (axz * dax + ayz * day + azz * daz)};
+
+    if constexpr (Matter) {
+      // 16 pi sigma^2 alpha phi^4 J^i with J^i = rho0 h W^2 (beta^i + V^i)/alpha. J reads beta at the
+      // point itself, which core's sweep does not allow for in its fixed point Jacobian -(20/3)/h^2:
+      // the term's derivative, 16 pi sigma^2 phi^4 rho0 h W^2 (~ 10 for a neutron star), is tiny next
+      // to (20/3)/h^2 (~ 7e3 at h = 0.03), so the Gauss-Seidel step is barely changed and the
+      // converged solution not at all. Outside matter (rho0 = 0) the term is 0 and W never formed
+      // (the fluid velocity may be superluminal far out, where W is NaN).
+      const double rho0 = s.rho0[idx];
+      const double ux = x.c[i] + s.velocity[0][idx], uy = y.c[i] + s.velocity[1][idx],
+                   uz = z.c[i] + s.velocity[2][idx];
+      const double w2 = lorentz_squared(phi, e[0], ux, uy, uz);
+      const double phi2 = phi * phi;
+      const double k = 16.0 * std::numbers::pi * s.sigma2 * alpha * phi2 * phi2;
+      const double hh = s.enthalpy[idx];
+      const double jx = momentum_density(rho0, hh, w2, ux, alpha), jy = momentum_density(rho0, hh, w2, uy, alpha),
+                   jz = momentum_density(rho0, hh, w2, uz, alpha);
+      const bool in_matter = rho0 > 0;
+      n.x -= in_matter ? k * jx : 0.0;
+      n.y -= in_matter ? k * jy : 0.0;
+      n.z -= in_matter ? k * jz : 0.0;
+    }
+    return n;
+  }
+};
+
+}  // namespace bhnsid::shift

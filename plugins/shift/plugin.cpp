@@ -1,0 +1,90 @@
+// The shift plugin: the minimal-distortion shift (eq. mindist_hat) for beta^i, published as the
+// EllipticEquation "equation.shift" that the multigrid relaxes with the other field equations, with
+// the excision cube about the puncture (physics-notes §2.5, §4.6).
+#include <memory>
+#include <string>
+
+#include "bhnsid/core/context.hpp"
+#include "bhnsid/core/plugin.hpp"
+#include "shift.hpp"
+
+namespace bhnsid::shift {
+namespace {
+
+using core::Bin;
+using core::Context;
+
+struct State {
+  std::shared_ptr<ShiftEquation> equation;
+};
+
+void log_excision(const Context& ctx, const ExcisionReport& r) {
+  std::string coarse;
+  for (int l : r.nearest_levels) coarse += (coarse.empty() ? "" : ", ") + std::to_string(l);
+  ctx.log().info("shift: excision cube of side {:.6g} about ({:.6g}, {:.6g}, {:.6g}), {} finest-level points{}; "
+                 "beta_0 = ({:.9g}, {:.9g}, {:.9g})",
+                 r.cube.side, r.cube.centre[0], r.cube.centre[1], r.cube.centre[2], r.finest_points,
+                 coarse.empty() ? std::string{} : "; nearest point held on level(s) " + coarse, r.beta0[0], r.beta0[1],
+                 r.beta0[2]);
+}
+
+void declare(core::PluginBuilder& b) {
+  auto state = std::make_shared<State>();
+  b.require("grid");
+  b.require("elliptic_solver");
+  b.implements("equation.shift");
+
+  b.keyword("excision_value", {"lorentz", "plain"})
+      .doc("shift held in the excision cube (dimensionless): lorentz = -v/sqrt(1 - |v|^2) (the paper's beta_0), "
+           "plain = -v, with v = Phat_BH/Mhat_BH")
+      .default_value(std::string("lorentz"));
+  b.real("test_source_scale")
+      .doc("TEST ONLY: multiplies the Ahat term 2 phi^-6 Ahat^ij d_j alpha (dimensionless), so that tests can show "
+           "that a one-coefficient error is detected; 1 for physics")
+      .default_value(1.0);
+
+  b.schedule(Bin::setup, "setup", [state](Context& ctx) {
+     auto& grid = ctx.services().get<Grid>("grid");
+     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* puncture = ctx.services().find<Puncture>("puncture");
+     Settings settings;
+     settings.excision_value =
+         ctx.params().string("excision_value") == "plain" ? ExcisionValue::plain : ExcisionValue::lorentz;
+     settings.source_scale = ctx.params().real("test_source_scale");
+     state->equation = std::make_shared<ShiftEquation>(grid, fluid, puncture, settings);
+     ctx.publish<EllipticEquation>("equation.shift", state->equation);
+     ctx.log().info("minimal-distortion shift: {}, {}", fluid ? "with matter" : "vacuum",
+                    puncture ? "with an excised puncture" : "no black hole");
+     if (puncture) log_excision(ctx, state->equation->update_puncture());
+   })
+      .after("hamiltonian.setup")
+      .after("lapse.setup")
+      .after("momentum.setup")
+      .doc("check chi, puncture_phi, eta, ahat; register beta (and the excision mask); publish the equation");
+
+  b.schedule(Bin::solve, "excision", [state](Context& ctx) {
+     const ExcisionReport r = state->equation->update_puncture();
+     if (r.cube.side == 0) return;  // no puncture
+     if (r.changed) log_excision(ctx, r);
+     if (r.coarsest_changed)
+       ctx.log().warn("shift: the held points of the coarsest level changed with the puncture; the multigrid indexes "
+                      "the coarsest level's unknowns once (plugins/multigrid coarse_solver), so its direct solve may "
+                      "now fail as singular");
+     ctx.set_scalar("shift_excision_side", r.cube.side);
+     ctx.set_scalar("shift_excision_points", r.finest_points);
+   })
+      .before("multigrid.solve")
+      .doc("puncture part of dphi and the excision mask on every level when the puncture moved; beta = beta_0 on "
+           "every excised point");
+}
+
+}  // namespace
+}  // namespace bhnsid::shift
+
+extern "C" BHNSID_EXPORT const BhnsidPluginInfo* bhnsid_plugin_info() {
+  static const BhnsidPluginInfo info{BHNSID_ABI_VERSION, "shift", "1.0",
+                                     "minimal-distortion shift beta^i (eq. mindist_hat) with the excision cube, an "
+                                     "equation.* service",
+                                     &bhnsid::shift::declare};
+  return &info;
+}

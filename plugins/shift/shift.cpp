@@ -1,0 +1,252 @@
+#include "shift.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+#include <vector>
+
+#include "bhnsid/core/errors.hpp"
+
+namespace bhnsid::shift {
+
+using core::TensorKind;
+
+namespace {
+
+const std::vector<TensorKind> scalar{TensorKind::scalar};
+const std::vector<TensorKind> vector{TensorKind::vector_x, TensorKind::vector_y, TensorKind::vector_z};
+
+/// The puncture part of dphi, filled by this plugin on every level.
+constexpr const char* dphi_puncture_field = "shift.dphi_puncture";
+
+/// Calls fn(std::bool_constant<hole>{}, std::bool_constant<matter>{}).
+template <class Fn>
+void with_kind(bool hole, bool matter, Fn&& fn) {
+  if (hole) {
+    if (matter)
+      fn(std::true_type{}, std::true_type{});
+    else
+      fn(std::true_type{}, std::false_type{});
+  } else {
+    if (matter)
+      fn(std::false_type{}, std::true_type{});
+    else
+      fn(std::false_type{}, std::false_type{});
+  }
+}
+
+/// The fields other plugins register and the shift reads, with the plugin that provides each.
+struct Needed {
+  const char* name;
+  std::size_t components;
+  const char* owner;
+};
+constexpr Needed needed[] = {{fields::chi, 1, "hamiltonian"},
+                             {fields::puncture_phi, 1, "hamiltonian"},
+                             {fields::eta, 1, "lapse"},
+                             {fields::ahat, 6, "momentum"}};
+
+const char* puncture_parameters = "puncture.bare_mass, puncture.position, puncture.momentum";
+
+}  // namespace
+
+ShiftEquation::ShiftEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, Settings settings)
+    : grid_(grid), fluid_(fluid), puncture_(puncture), settings_(settings) {
+  for (const Needed& f : needed) {
+    if (!grid.has_field(f.name))
+      throw core::InputError(fmt::format(
+          "shift: the field '{}' is missing; the shift equation reads chi and puncture_phi (plugin hamiltonian), eta "
+          "(plugin lapse) and ahat (plugin momentum): add the plugin {}",
+          f.name, f.owner));
+    const FieldInfo& info = grid.field_info(grid.field_id(f.name));
+    if (info.components.size() != f.components || info.storage != core::Storage::all_levels)
+      throw core::InputError(fmt::format("shift: the field '{}' has {} component(s) on {}; the shift needs {} on all levels",
+                                         f.name, info.components.size(), core::to_string(info.storage), f.components));
+  }
+  chi_ = grid.field_id(fields::chi);
+  eta_ = grid.field_id(fields::eta);
+  puncture_phi_ = grid.field_id(fields::puncture_phi);
+  ahat_ = grid.field_id(fields::ahat);
+  beta_ = grid.add_field(fields::shift, vector, core::TimeParity::odd);
+  if (fluid_) {
+    // Registered here too (registering an existing field returns it), as the hamiltonian does.
+    rho0_ = grid.add_field(fields::rho0, scalar);
+    grid.add_field(fields::press, scalar);
+    enthalpy_ = grid.add_field(fields::enthalpy, scalar);
+    velocity_ = grid.add_field(fields::fluid_velocity, vector, core::TimeParity::odd);
+  }
+  if (puncture_) {
+    check_puncture<core::InputError>(puncture_->bare_mass(), puncture_->position(), puncture_->momentum());
+    // d_i of a scalar: vector kinds give the right parities (d_z odd in z).
+    dphi_ = grid.add_field(dphi_puncture_field, vector);
+    const Cube cube = excision_cube(puncture_->bare_mass(), puncture_->position(), grid.finest().dx);
+    // The grid builds the plain cube on every level; update_puncture() rewrites it with the
+    // nearest-point rule and whenever the puncture moves.
+    mask_ = grid.add_mask(fields::excision_mask, ExcisionRegion{ExcisionRegion::Shape::cube, cube.centre, cube.half});
+  }
+}
+
+template <class E>
+void ShiftEquation::check_puncture(double mass, const std::array<double, 3>& position,
+                                   const std::array<double, 3>& momentum) const {
+  if (!(mass > 0) || !std::isfinite(mass))
+    throw E(fmt::format("shift: the puncture's bare mass Mhat_BH = {} (puncture.bare_mass) must be > 0 for the excision "
+                        "cube of side max(Mhat_BH/2, 3 dx)",
+                        mass));
+  const double v2 = (momentum[0] * momentum[0] + momentum[1] * momentum[1] + momentum[2] * momentum[2]) / (mass * mass);
+  if (settings_.excision_value == ExcisionValue::lorentz && !(v2 < 1))
+    throw E(fmt::format("shift: |v| = |Phat_BH|/Mhat_BH = {:.6g} (puncture.momentum, puncture.bare_mass) must be < 1 for "
+                        "beta_0 = -v/sqrt(1 - v^2) (shift.excision_value = lorentz)",
+                        std::sqrt(v2)));
+  if (grid_.symmetry() == Symmetry::equatorial && (position[2] != 0 || momentum[2] != 0))
+    throw E(fmt::format("shift: with equatorial symmetry the hole must lie in and move along z = 0 (position z = {}, "
+                        "momentum z = {}; puncture.position, puncture.momentum)",
+                        position[2], momentum[2]));
+  const std::string outside = cube_outside_grid(excision_cube(mass, position, grid_.finest().dx), grid_.finest());
+  if (!outside.empty())
+    throw E(fmt::format("shift: {}: move the hole or enlarge the grid ({}; grid.n, grid.dx)", outside,
+                        puncture_parameters));
+}
+
+OuterBoundary ShiftEquation::boundary() const {
+  OuterBoundary b;
+  b.kind = OuterBoundary::Kind::robin;
+  b.u_inf = {0.0, 0.0, 0.0};
+  b.centre = {0.0, 0.0, 0.0};
+  return b;
+}
+
+std::vector<std::string> ShiftEquation::coefficients() const {
+  // chi and eta are the unknowns of hamiltonian and lapse; puncture_phi, ahat and the puncture part
+  // of dphi are filled on every level by their owners (analytically where they can), so they are
+  // not restricted.
+  if (!fluid_) return {};
+  return {fields::rho0, fields::enthalpy, fields::fluid_velocity};
+}
+
+Sources ShiftEquation::sources(int level) const {
+  const Level& lv = grid_.level(level);
+  Sources s;
+  s.chi = grid_.data(chi_, 0, level);
+  s.eta = grid_.data(eta_, 0, level);
+  for (int c = 0; c < 6; ++c) s.ahat[c] = grid_.data(ahat_, c, level);
+  if (puncture_) {
+    s.puncture_phi = grid_.data(puncture_phi_, 0, level);
+    for (int c = 0; c < 3; ++c) s.dphi_puncture[c] = grid_.data(dphi_, c, level);
+  }
+  if (fluid_) {
+    s.rho0 = grid_.data(rho0_, 0, level);
+    s.enthalpy = grid_.data(enthalpy_, 0, level);
+    for (int c = 0; c < 3; ++c) s.velocity[c] = grid_.data(velocity_, c, level);
+    s.sigma2 = fluid_->sigma() * fluid_->sigma();
+  }
+  s.source_scale = settings_.source_scale;
+  s.inv_2h = 0.5 / lv.dx;
+  s.sy = lv.sy;
+  s.sz = lv.sz;
+  return s;
+}
+
+void ShiftEquation::residual(const RelaxArgs& args, double* const* out) const {
+  const int l = args.level;
+  const stencil::ConstComponents v{grid_.data(beta_, 0, l), grid_.data(beta_, 1, l), grid_.data(beta_, 2, l)};
+  const stencil::Components o{out[0], out[1], out[2]};
+  const Sources s = sources(l);
+  with_kind(puncture_ != nullptr, fluid_ != nullptr, [&](auto hole, auto matter) {
+    stencil::vector_residual_any(grid_.level(l), v, args.rhs, args.fixed, o,
+                                 ShiftLower<decltype(hole)::value, decltype(matter)::value>{s});
+  });
+}
+
+void ShiftEquation::relax(const RelaxArgs& args) const {
+  const int l = args.level;
+  const stencil::Components v{grid_.data(beta_, 0, l), grid_.data(beta_, 1, l), grid_.data(beta_, 2, l)};
+  const Sources s = sources(l);
+  const stencil::Mirror mirror = [this, l] { grid_.fill_ghosts(beta_, l); };
+  with_kind(puncture_ != nullptr, fluid_ != nullptr, [&](auto hole, auto matter) {
+    stencil::vector_relax_any(grid_.level(l), v, args.rhs, args.fixed, args.omega, mirror,
+                              ShiftLower<decltype(hole)::value, decltype(matter)::value>{s});
+  });
+}
+
+void ShiftEquation::fill_dphi_puncture(double mass, const std::array<double, 3>& position) {
+  for (int l = 0; l < grid_.num_levels(); ++l) {
+    const Level& lv = grid_.level(l);
+    double* d[3] = {grid_.data(dphi_, 0, l), grid_.data(dphi_, 1, l), grid_.data(dphi_, 2, l)};
+    for (int k = 0; k < lv.nz; ++k)
+      for (int j = 0; j < lv.ny; ++j)
+        for (int i = 0; i < lv.nx; ++i) {
+          const double dx = lv.x(i) - position[0], dy = lv.y(j) - position[1], dz = lv.z(k) - position[2];
+          const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+          // The puncture plugin keeps the hole off the points; a bug there must not pass silently.
+          if (!(r > 1e-6 * lv.dx))
+            throw core::RunFailure(fmt::format("shift: the puncture ({}, {}, {}) lies on grid point ({}, {}, {}) of level {}",
+                                               position[0], position[1], position[2], i, j, k, l));
+          // dphi_i = -Mhat n_i / (2 r^2) = -Mhat (x_i - xhat_BH_i) / (2 r^3)
+          const double c = -0.5 * mass / (r * r * r);
+          const std::ptrdiff_t p = lv.at(i, j, k);
+          d[0][p] = c * dx;
+          d[1][p] = c * dy;
+          d[2][p] = c * dz;
+        }
+    grid_.fill_ghosts(dphi_, l);
+  }
+}
+
+ExcisionReport ShiftEquation::update_puncture() {
+  ExcisionReport report;
+  if (!puncture_) return report;
+  const double mass = puncture_->bare_mass();
+  const std::array<double, 3> position = puncture_->position(), momentum = puncture_->momentum();
+  check_puncture<core::RunFailure>(mass, position, momentum);
+  report.cube = excision_cube(mass, position, grid_.finest().dx);
+  report.beta0 = excision_shift(momentum, mass, settings_.excision_value);
+  const int coarsest = grid_.num_levels() - 1;
+  if (!built_ || mass != last_mass_ || position != last_position_) {
+    report.changed = true;
+    fill_dphi_puncture(mass, position);
+    for (int l = 0; l <= coarsest; ++l) {
+      const Level& lv = grid_.level(l);
+      // WORKAROUND (see README "Excision"): Grid has no call that rebuilds a mask or holds the
+      // nearest point of a level the region misses, so the bytes the grid allocated (writable
+      // memory, handed out as const) are rewritten here. The multigrid reads the mask through
+      // Grid::mask on every call, so it sees the new points.
+      auto* bytes = const_cast<std::uint8_t*>(grid_.mask(mask_, l));
+      std::vector<std::uint8_t> before;
+      if (l == coarsest && built_) before.assign(bytes, bytes + lv.size);
+      bool nearest = false;
+      const int count = build_mask(lv, report.cube, bytes, nearest);
+      if (nearest) report.nearest_levels.push_back(l);
+      if (l == 0) report.finest_points = count;
+      if (l == coarsest && built_) report.coarsest_changed = !std::equal(before.begin(), before.end(), bytes);
+    }
+    last_mass_ = mass;
+    last_position_ = position;
+    last_finest_points_ = report.finest_points;
+    last_nearest_levels_ = report.nearest_levels;
+  } else {
+    report.finest_points = last_finest_points_;
+    report.nearest_levels = last_nearest_levels_;
+  }
+  built_ = true;
+  // beta = beta_0 at every excised point of every level. The multigrid injects the finest level's
+  // values into the coarse levels before each solve, so the finest level's are the ones that count.
+  for (int l = 0; l <= coarsest; ++l) {
+    const Level& lv = grid_.level(l);
+    const std::uint8_t* m = grid_.mask(mask_, l);
+    double* b[3] = {grid_.data(beta_, 0, l), grid_.data(beta_, 1, l), grid_.data(beta_, 2, l)};
+    for (int k = 0; k < lv.nz; ++k)
+      for (int j = 0; j < lv.ny; ++j)
+        for (int i = 0; i < lv.nx; ++i) {
+          const std::ptrdiff_t p = lv.at(i, j, k);
+          if (!m[p]) continue;
+          for (int c = 0; c < 3; ++c) b[c][p] = report.beta0[static_cast<std::size_t>(c)];
+        }
+    grid_.fill_ghosts(beta_, l);
+  }
+  return report;
+}
+
+}  // namespace bhnsid::shift

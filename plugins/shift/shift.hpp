@@ -1,0 +1,77 @@
+#pragma once
+// The minimal-distortion shift as an EllipticEquation service ("equation.shift"): unknown beta^i,
+// Robin falloff beta -> 0 about the origin (physics-notes §5.2), Dirichlet beta_0 in the excision
+// cube about the puncture (§4.6).
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bhnsid/interfaces/elliptic.hpp"
+#include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/spacetime.hpp"
+#include "excision.hpp"
+#include "kernels.hpp"
+
+namespace bhnsid::shift {
+
+struct Settings {
+  ExcisionValue excision_value = ExcisionValue::lorentz;
+  double source_scale = 1;  ///< TEST ONLY factor on the Ahat term
+};
+
+/// What one refresh of the puncture terms did, for the log and the scalars.
+struct ExcisionReport {
+  bool changed = false;            ///< mask and puncture terms were rebuilt
+  bool coarsest_changed = false;   ///< the coarsest level's held points differ from the last build
+  int finest_points = 0;           ///< excised stored points of the finest level
+  std::vector<int> nearest_levels; ///< levels where the cube holds no point (nearest point held)
+  Cube cube;
+  std::array<double, 3> beta0{};
+};
+
+class ShiftEquation final : public EllipticEquation {
+ public:
+  /// Registers beta (and, with a puncture, the puncture part of dphi and the excision mask); reads
+  /// chi, puncture_phi, eta and ahat, which other plugins register: core::InputError naming the
+  /// missing field and its plugin otherwise. With a puncture: InputError for Mhat_BH <= 0, |v| >= 1
+  /// or a cube reaching the outer boundary. fluid and puncture may be null (vacuum, no hole).
+  ShiftEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, Settings settings);
+
+  std::string name() const override { return "shift"; }
+  std::string unknown() const override { return fields::shift; }
+  OuterBoundary boundary() const override;
+  std::string excision_mask() const override { return puncture_ ? fields::excision_mask : std::string{}; }
+  std::vector<std::string> coefficients() const override;
+  void residual(const RelaxArgs& args, double* const* out) const override;
+  void relax(const RelaxArgs& args) const override;
+
+  /// Before every solve: when the puncture changed, refill the puncture part of dphi on every level
+  /// and rebuild the excision mask on every level; then set beta = beta_0 at every excised point of
+  /// every level. core::RunFailure for a puncture that became invalid (the cube reaching the
+  /// boundary, Mhat <= 0, |v| >= 1). Without a puncture it does nothing.
+  ExcisionReport update_puncture();
+
+ private:
+  Sources sources(int level) const;
+  /// Throws E (InputError at SETUP, RunFailure later) when the puncture cannot be excised.
+  template <class E>
+  void check_puncture(double mass, const std::array<double, 3>& position, const std::array<double, 3>& momentum) const;
+  void fill_dphi_puncture(double mass, const std::array<double, 3>& position);
+
+  Grid& grid_;
+  const Fluid* fluid_;
+  const Puncture* puncture_;
+  Settings settings_;
+  int beta_ = -1, chi_ = -1, eta_ = -1, puncture_phi_ = -1, ahat_ = -1;
+  int rho0_ = -1, enthalpy_ = -1, velocity_ = -1;
+  int dphi_ = -1, mask_ = -1;
+  // The puncture the terms and mask were last built for.
+  bool built_ = false;
+  double last_mass_ = 0;
+  std::array<double, 3> last_position_{};
+  int last_finest_points_ = 0;
+  std::vector<int> last_nearest_levels_;
+};
+
+}  // namespace bhnsid::shift
