@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <new>
+#include <utility>
 
 #include <sys/mman.h>
 
@@ -198,6 +199,10 @@ const std::uint8_t* UniformGrid::mask(int id, int level_index) const {
   if (id < 0 || id >= static_cast<int>(masks_.size()) || level_index < 0 || level_index >= num_levels())
     throw core::RunFailure(fmt::format("grid: no mask {} on level {}", id, level_index));
   return masks_[static_cast<std::size_t>(id)].levels[static_cast<std::size_t>(level_index)].get();
+}
+
+std::uint8_t* UniformGrid::mask_data(int id, int level_index) {
+  return const_cast<std::uint8_t*>(std::as_const(*this).mask(id, level_index));  // the bytes are ours, allocated writable
 }
 
 }  // namespace bhnsid::grid

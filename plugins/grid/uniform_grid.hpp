@@ -46,6 +46,7 @@ class UniformGrid final : public Grid {
   int add_mask(const std::string& name, const ExcisionRegion& region) override;
   int mask_id(const std::string& name) const override;
   const std::uint8_t* mask(int mask, int level) const override;
+  std::uint8_t* mask_data(int mask, int level) override;
 
   double global_sum(double local) const override { return local; }
   double global_max(double local) const override { return local; }

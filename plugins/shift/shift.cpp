@@ -209,11 +209,10 @@ ExcisionReport ShiftEquation::update_puncture() {
     fill_dphi_puncture(mass, position);
     for (int l = 0; l <= coarsest; ++l) {
       const Level& lv = grid_.level(l);
-      // WORKAROUND (see README "Excision"): Grid has no call that rebuilds a mask or holds the
-      // nearest point of a level the region misses, so the bytes the grid allocated (writable
-      // memory, handed out as const) are rewritten here. The multigrid reads the mask through
-      // Grid::mask on every call, so it sees the new points.
-      auto* bytes = const_cast<std::uint8_t*>(grid_.mask(mask_, l));
+      // The grid builds a mask once from its region; this cube moves with the hole and holds the
+      // nearest point of a level it misses, so the bytes are rewritten here (Grid::mask_data).
+      // The multigrid reads the mask through Grid::mask at every solve and sees the new points.
+      std::uint8_t* bytes = grid_.mask_data(mask_, l);
       std::vector<std::uint8_t> before;
       if (l == coarsest && built_) before.assign(bytes, bytes + lv.size);
       bool nearest = false;

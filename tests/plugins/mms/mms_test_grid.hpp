@@ -111,6 +111,7 @@ class MemoryGrid final : public Grid {
     throw std::out_of_range("MemoryGrid: no mask " + name);
   }
   const std::uint8_t* mask(int mask, int) const override { return masks_.at(static_cast<std::size_t>(mask)).data(); }
+  std::uint8_t* mask_data(int mask, int) override { return masks_.at(static_cast<std::size_t>(mask)).data(); }
 
   double global_sum(double local) const override { return local; }
   double global_max(double local) const override { return local; }

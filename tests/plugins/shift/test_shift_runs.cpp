@@ -65,9 +65,9 @@ double scalar(const Run& r, const std::string& key) {
 TEST_CASE("plugins.shift.manufactured_solution_converges_at_second_order", "[plugins][shift]") {
   // With given chi, eta, Ahat and a fluid whose momentum density makes beta_exact exact (no
   // puncture), the solved shift's max error falls by 4 (3.4 .. 4.6) per halving of dx, n = 32, 64,
-  // 128 on [-2, 2]^3, equatorial symmetry, Robin faces; V(2,1) cycles converge by < 0.7 per cycle
-  // and W(2,1) cycles by < 0.2 (measured 0.35, 0.50, 0.60 and 0.09; V is slow because the multigrid
-  // restricts the fluid fields on z = 0 from unfilled ghosts, README "Multigrid": 0.13 .. 0.18 without that).
+  // 128 on [-2, 2]^3, equatorial symmetry, Robin faces; V(2,1) and W(2,1) cycles converge by <= 0.2
+  // per cycle, the issue's target (measured V 0.127, 0.140, 0.181 and W 0.09; V was 0.35 .. 0.60
+  // before the multigrid filled coefficient ghosts before restricting them).
   TempDir tmp;
   double errors[3];
   const int ns[3] = {32, 64, 128};
@@ -79,7 +79,7 @@ TEST_CASE("plugins.shift.manufactured_solution_converges_at_second_order", "[plu
     WARN(fmt::format("n = {}: V(2,1) max error {:.4e}, rms {:.4e}, multigrid factor {:.3f}, {} cycles, {:.2f} s", ns[q],
                      errors[q], scalar(r, "shift_mms_error_rms"), scalar(r, "multigrid_factor"),
                      scalar(r, "multigrid_cycles"), scalar(r, "multigrid_seconds")));
-    CHECK(scalar(r, "multigrid_factor") < 0.7);
+    CHECK(scalar(r, "multigrid_factor") <= 0.2);
   }
   INFO("errors " << errors[0] << ", " << errors[1] << ", " << errors[2]);
   CHECK(errors[0] / errors[1] == Approx(4.0).margin(0.6));

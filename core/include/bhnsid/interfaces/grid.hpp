@@ -105,6 +105,10 @@ class Grid : public core::Service {
   virtual int add_mask(const std::string& name, const ExcisionRegion& region) = 0;
   virtual int mask_id(const std::string& name) const = 0;
   virtual const std::uint8_t* mask(int mask, int level) const = 0;
+  /// The same bytes, writable, for the plugin that owns a region which moves between solves (the
+  /// shift's excision cube follows the black hole, and holds the nearest point on a level the cube
+  /// misses). The solver reads masks afresh at every solve.
+  virtual std::uint8_t* mask_data(int mask, int level) = 0;
 
   /// Reductions of per-process partial results over all processes (identity in a serial grid).
   virtual double global_sum(double local) const = 0;
