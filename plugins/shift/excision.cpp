@@ -8,10 +8,10 @@
 
 namespace bhnsid::shift {
 
-Cube excision_cube(double bare_mass, const std::array<double, 3>& position, double finest_dx) {
+Cube excision_cube(double bare_mass, const std::array<double, 3>& position, double finest_dx, double min_side) {
   Cube c;
   c.centre = position;
-  c.side = std::max(0.5 * bare_mass, 3.0 * finest_dx);
+  c.side = std::max({0.5 * bare_mass, 3.0 * finest_dx, min_side});
   c.half = 0.5 * c.side + 1e-12 * finest_dx;
   return c;
 }

@@ -21,8 +21,8 @@ struct Cube {
   double half = 0;
 };
 
-/// s = max(Mhat/2, 3 dx), half = s/2 + 1e-12 dx.
-Cube excision_cube(double bare_mass, const std::array<double, 3>& position, double finest_dx);
+/// s = max(Mhat/2, 3 dx, min_side), half = s/2 + 1e-12 dx.
+Cube excision_cube(double bare_mass, const std::array<double, 3>& position, double finest_dx, double min_side = 0);
 
 /// Writes the mask of one level into `bytes` (Level::size bytes; 1 excised, 0 elsewhere and on the
 /// ghosts): the points inside the cube (with equatorial symmetry also those whose mirror image is),

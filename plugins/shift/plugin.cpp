@@ -38,6 +38,11 @@ void declare(core::PluginBuilder& b) {
       .doc("shift held in the excision cube (dimensionless): lorentz = -v/sqrt(1 - |v|^2) (the paper's beta_0), "
            "plain = -v, with v = Phat_BH/Mhat_BH")
       .default_value(std::string("lorentz"));
+  b.real("excision_min_side")
+      .doc("smallest full side of the excision cube (hatted length); the side is max(Mhat_BH/2, 3 dx, this). A "
+           "fixed side lets runs at several dx excise the same region (convergence studies); 0 for the paper's rule")
+      .default_value(0.0)
+      .at_least(0);
   b.real("test_source_scale")
       .doc("TEST ONLY: multiplies the Ahat term 2 phi^-6 Ahat^ij d_j alpha (dimensionless), so that tests can show "
            "that a one-coefficient error is detected; 1 for physics")
@@ -51,6 +56,7 @@ void declare(core::PluginBuilder& b) {
      settings.excision_value =
          ctx.params().string("excision_value") == "plain" ? ExcisionValue::plain : ExcisionValue::lorentz;
      settings.source_scale = ctx.params().real("test_source_scale");
+     settings.min_side = ctx.params().real("excision_min_side");
      state->equation = std::make_shared<ShiftEquation>(grid, fluid, puncture, settings);
      ctx.publish<EllipticEquation>("equation.shift", state->equation);
      ctx.log().info("minimal-distortion shift: {}, {}", fluid ? "with matter" : "vacuum",

@@ -18,6 +18,7 @@ namespace bhnsid::shift {
 struct Settings {
   ExcisionValue excision_value = ExcisionValue::lorentz;
   double source_scale = 1;  ///< TEST ONLY factor on the Ahat term
+  double min_side = 0;      ///< smallest full side of the excision cube (hatted); 0: max(M/2, 3 dx) alone
 };
 
 /// What one refresh of the puncture terms did, for the log and the scalars.

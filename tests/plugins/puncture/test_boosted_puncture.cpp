@@ -107,3 +107,15 @@ TEST_CASE("plugins.puncture.shift_is_beta0_in_the_cube_and_falls_like_1_over_r",
   CHECK(held >= 2);
   CHECK(far / near == Approx(1.0).margin(0.1));
 }
+
+TEST_CASE("plugins.puncture.excision_min_side_fixes_the_cube", "[plugins][puncture]") {
+  // shift.excision_min_side sets the smallest full side of the cube, so that runs at several dx can
+  // excise one region: side = max(M/2, 3 dx, min_side) = 2 here (3 dx = 1.875), 1.875 without it.
+  const ParfileRun fixed = run_parfile("boosted_puncture.yaml", {"grid.n=32", "grid.dx=0.625", "shift.excision_min_side=2"});
+  const ParfileRun plain = run_parfile("boosted_puncture.yaml", {"grid.n=32", "grid.dx=0.625"});
+  INFO(fixed.output);
+  REQUIRE(fixed.exit_code == 0);
+  REQUIRE(plain.exit_code == 0);
+  CHECK(fixed.scalar("shift_excision_side") == Approx(2.0));
+  CHECK(plain.scalar("shift_excision_side") == Approx(1.875));
+}
