@@ -14,26 +14,11 @@
 
 #include "bhnsid/core/variables.hpp"
 #include "bhnsid/interfaces/grid.hpp"
+#include "test_level.hpp"
 
 namespace bhnsid::mms::test {
 
-/// Level 0 of a cube of n intervals of spacing dx, as the grid plugin builds it.
-inline Level make_level(int n, double dx, bool z_symmetry) {
-  Level lv;
-  lv.index = 0;
-  lv.n = n;
-  lv.dx = dx;
-  lv.z_symmetry = z_symmetry;
-  lv.nx = lv.ny = n + 1;
-  lv.nz = z_symmetry ? n / 2 + 1 : n + 1;
-  const double h = 0.5 * n * dx;
-  lv.origin = {-h, -h, z_symmetry ? 0.0 : -h};
-  lv.sy = lv.nx + 2;
-  lv.sz = lv.sy * (lv.ny + 2);
-  lv.offset = 1 + lv.sy + lv.sz;
-  lv.size = static_cast<std::size_t>(lv.sz) * static_cast<std::size_t>(lv.nz + 2);
-  return lv;
-}
+using bhnsid::test::make_level;
 
 /// Mirror of the ghost plane k = -1 from k = 1 with the given sign, as UniformGrid::fill_ghosts.
 inline void mirror_plane(const Level& lv, double* values, double sign) {

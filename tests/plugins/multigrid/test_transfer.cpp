@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "boundary_rows.hpp"
+#include "test_level.hpp"
 #include "transfer.hpp"
 
 using namespace bhnsid;
@@ -14,23 +15,7 @@ using namespace bhnsid::multigrid;
 
 namespace {
 
-// The layout of plugins/grid (vertex-centred, n intervals, one ghost layer), built here because a
-// plugin's tests do not link another plugin.
-Level make_level(int n, double dx, bool z_symmetry) {
-  Level lv;
-  lv.n = n;
-  lv.dx = dx;
-  lv.z_symmetry = z_symmetry;
-  lv.nx = lv.ny = n + 1;
-  lv.nz = z_symmetry ? n / 2 + 1 : n + 1;
-  const double h = 0.5 * n * dx;
-  lv.origin = {-h, -h, z_symmetry ? 0.0 : -h};
-  lv.sy = lv.nx + 2;
-  lv.sz = lv.sy * (lv.ny + 2);
-  lv.offset = 1 + lv.sy + lv.sz;
-  lv.size = static_cast<std::size_t>(lv.sz) * static_cast<std::size_t>(lv.nz + 2);
-  return lv;
-}
+using bhnsid::test::make_level;
 
 template <class F>
 std::vector<double> sample(const Level& lv, F f) {

@@ -8,6 +8,7 @@
 
 #include "excision.hpp"
 #include "kernels.hpp"
+#include "test_level.hpp"
 #include "support/manufactured.hpp"
 
 using namespace bhnsid;
@@ -16,22 +17,7 @@ using Catch::Detail::Approx;
 
 namespace {
 
-/// Level 0 of a cube of n intervals, laid out as plugins/grid builds it (one ghost layer, x contiguous).
-Level make_level(int n, double dx, bool z_symmetry) {
-  Level lv;
-  lv.n = n;
-  lv.dx = dx;
-  lv.z_symmetry = z_symmetry;
-  lv.nx = lv.ny = n + 1;
-  lv.nz = z_symmetry ? n / 2 + 1 : n + 1;
-  const double h = 0.5 * n * dx;
-  lv.origin = {-h, -h, z_symmetry ? 0.0 : -h};
-  lv.sy = lv.nx + 2;
-  lv.sz = lv.sy * (lv.ny + 2);
-  lv.offset = 1 + lv.sy + lv.sz;
-  lv.size = static_cast<std::size_t>(lv.sz) * static_cast<std::size_t>(lv.nz + 2);
-  return lv;
-}
+using bhnsid::test::make_level;
 
 /// A quadratic q(x) = c0 + g.x + x.H.x/2 with its exact gradient; centred differences of a
 /// quadratic are exact, so the kernel's derivatives equal these to round-off.
@@ -273,15 +259,15 @@ TEST_CASE("plugins.shift.manufactured_current_matches_sympy", "[plugins][shift]"
        {0.019959805113176543855, -0.020674741366446196092, 0.0036951501154734411085}},
   };
   for (const Case& c : cases) {
-    const auto J = test::required_current(c.x);
-    const auto b = test::beta_exact(c.x);
+    const auto J = shift::test::required_current(c.x);
+    const auto b = shift::test::beta_exact(c.x);
     for (int i = 0; i < 3; ++i) {
       CHECK(J[static_cast<std::size_t>(i)] == Approx(c.J[static_cast<std::size_t>(i)]).epsilon(1e-11));
       CHECK(b[static_cast<std::size_t>(i)].v == Approx(c.beta[static_cast<std::size_t>(i)]).epsilon(1e-13));
     }
     // The fluid reproduces J at beta_exact: rho0 h W^2 (beta + V)/alpha.
-    const test::FluidPoint f = test::fluid_exact(c.x);
-    const double phi = test::chi_exact(c.x).v, eta = test::eta_exact(c.x).v, alpha = eta / phi;
+    const shift::test::FluidPoint f = shift::test::fluid_exact(c.x);
+    const double phi = shift::test::chi_exact(c.x).v, eta = shift::test::eta_exact(c.x).v, alpha = eta / phi;
     double U[3];
     for (int i = 0; i < 3; ++i) U[i] = b[static_cast<std::size_t>(i)].v + f.velocity[static_cast<std::size_t>(i)];
     const double w2 = lorentz_squared(phi, eta, U[0], U[1], U[2]);
