@@ -43,6 +43,15 @@ void declare(core::PluginBuilder& b) {
            "fixed side lets runs at several dx excise the same region (convergence studies); 0 for the paper's rule")
       .default_value(0.0)
       .at_least(0);
+  b.integer("local_sweeps")
+      .doc("extra red-black sweeps on a box about the excision cube after every multigrid sweep of the shift (the "
+           "coefficient 6 dphi/phi ~ 6/r makes the points next to the cube the slow ones); 0: off")
+      .default_value(4)
+      .at_least(0);
+  b.integer("local_width")
+      .doc("the box of the local sweeps: the held points' bounding box widened by this many points per side")
+      .default_value(4)
+      .at_least(0);
   b.real("test_source_scale")
       .doc("TEST ONLY: multiplies the Ahat term 2 phi^-6 Ahat^ij d_j alpha (dimensionless), so that tests can show "
            "that a one-coefficient error is detected; 1 for physics")
@@ -57,6 +66,8 @@ void declare(core::PluginBuilder& b) {
          ctx.params().string("excision_value") == "plain" ? ExcisionValue::plain : ExcisionValue::lorentz;
      settings.source_scale = ctx.params().real("test_source_scale");
      settings.min_side = ctx.params().real("excision_min_side");
+     settings.local_sweeps = static_cast<int>(ctx.params().integer("local_sweeps"));
+     settings.local_width = static_cast<int>(ctx.params().integer("local_width"));
      state->equation = std::make_shared<ShiftEquation>(grid, fluid, puncture, settings);
      ctx.publish<EllipticEquation>("equation.shift", state->equation);
      ctx.log().info("minimal-distortion shift: {}, {}", fluid ? "with matter" : "vacuum",

@@ -19,6 +19,8 @@ struct Settings {
   ExcisionValue excision_value = ExcisionValue::lorentz;
   double source_scale = 1;  ///< TEST ONLY factor on the Ahat term
   double min_side = 0;      ///< smallest full side of the excision cube (hatted); 0: max(M/2, 3 dx) alone
+  int local_sweeps = 4;     ///< extra red-black sweeps on the box about the hole after every sweep
+  int local_width = 4;      ///< the box: the held points' bounding box widened by this many points
 };
 
 /// What one refresh of the puncture terms did, for the log and the scalars.
@@ -72,6 +74,8 @@ class ShiftEquation final : public EllipticEquation {
   double last_mass_ = 0;
   std::array<double, 3> last_position_{};
   int last_finest_points_ = 0;
+  /// Per level: the held points' bounding box {i0, i1, j0, j1, k0, k1} (inclusive); empty without a hole.
+  std::vector<std::array<int, 6>> held_box_;
   std::vector<int> last_nearest_levels_;
 };
 
