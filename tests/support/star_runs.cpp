@@ -15,23 +15,43 @@ namespace bhnsid::test {
 
 namespace fs = std::filesystem;
 
-StarRun run_static_star(int n, double dx, const std::vector<std::string>& sets, const std::string& parfile) {
-  TempDir dir;
-  const fs::path out = dir.path() / "star";
-  std::vector<std::string> args{"run", (source_dir() / "parfiles" / parfile).string(), "--output", out.string(),
-                                "--set", fmt::format("grid.n={}", n), "--set", fmt::format("grid.dx={}", dx)};
+namespace {
+
+/// `bhnsid run parfiles/NAME --output OUT --set ...`, and summary.json's status and scalars.
+struct Launched {
+  ProcessResult process;
+  std::string status;
+  std::map<std::string, double> scalars;
+};
+
+Launched launch(const std::string& parfile, const fs::path& out, const std::vector<std::string>& sets) {
+  std::vector<std::string> args{"run", (source_dir() / "parfiles" / parfile).string(), "--output", out.string()};
   for (const std::string& s : sets) {
     args.push_back("--set");
     args.push_back(s);
   }
-  const ProcessResult r = run_bhnsid(args);
+  Launched l{run_bhnsid(args), {}, {}};
+  if (fs::exists(out / "summary.json")) {
+    const auto summary = nlohmann::json::parse(read_file(out / "summary.json"));
+    l.status = summary.value("status", "");
+    for (const auto& [key, value] : summary["scalars"].items()) l.scalars[key] = value.get<double>();
+  }
+  return l;
+}
+
+}  // namespace
+
+StarRun run_static_star(int n, double dx, const std::vector<std::string>& sets, const std::string& parfile) {
+  TempDir dir;
+  const fs::path out = dir.path() / "star";
+  std::vector<std::string> all{fmt::format("grid.n={}", n), fmt::format("grid.dx={}", dx)};
+  all.insert(all.end(), sets.begin(), sets.end());
+  const Launched l = launch(parfile, out, all);
   StarRun run;
-  run.exit_code = r.exit_code;
-  run.output = r.out + r.err;
-  if (!fs::exists(out / "summary.json")) return run;
-  const auto summary = nlohmann::json::parse(read_file(out / "summary.json"));
-  run.status = summary.value("status", "");
-  for (const auto& [key, value] : summary["scalars"].items()) run.scalars[key] = value.get<double>();
+  run.exit_code = l.process.exit_code;
+  run.output = l.process.out + l.process.err;
+  run.status = l.status;
+  run.scalars = l.scalars;
   if (!fs::exists(out / "star_axis.tsv")) return run;
   // The axis row nearest xhat_C (header: "# sigma = ..., xhat_C = X; ...").
   std::istringstream lines(read_file(out / "star_axis.tsv"));
@@ -62,20 +82,12 @@ double ParfileRun::scalar(const std::string& key) const {
 ParfileRun run_parfile(const std::string& parfile, const std::vector<std::string>& sets) {
   TempDir dir;
   const fs::path out = dir.path() / "run";
-  std::vector<std::string> args{"run", (source_dir() / "parfiles" / parfile).string(), "--output", out.string()};
-  for (const std::string& s : sets) {
-    args.push_back("--set");
-    args.push_back(s);
-  }
-  const ProcessResult r = run_bhnsid(args);
+  const Launched l = launch(parfile, out, sets);
   ParfileRun run;
-  run.exit_code = r.exit_code;
-  run.output = r.out + r.err;
-  if (fs::exists(out / "summary.json")) {
-    const auto summary = nlohmann::json::parse(read_file(out / "summary.json"));
-    run.status = summary.value("status", "");
-    for (const auto& [key, value] : summary["scalars"].items()) run.scalars[key] = value.get<double>();
-  }
+  run.exit_code = l.process.exit_code;
+  run.output = l.process.out + l.process.err;
+  run.status = l.status;
+  run.scalars = l.scalars;
   if (fs::exists(out / "fields_axis.tsv")) {
     std::istringstream lines(read_file(out / "fields_axis.tsv"));
     std::string line, name;
