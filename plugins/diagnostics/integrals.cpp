@@ -4,6 +4,7 @@
 #include <numbers>
 #include <vector>
 
+#include "bhnsid/core/errors.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "faces.hpp"
 
@@ -43,6 +44,8 @@ Masses masses(const Grid& grid, const Inputs& in) {
   const double* vel[3] = {field(grid, fields::fluid_velocity, 0), field(grid, fields::fluid_velocity, 1),
                           field(grid, fields::fluid_velocity, 2)};
   const double* shift[3] = {field(grid, fields::shift, 0), field(grid, fields::shift, 1), field(grid, fields::shift, 2)};
+  if (in.moving && !eta)
+    throw core::RunFailure("diagnostics: moving matter needs eta (the lapse plugin) for its Lorentz factor");
   std::vector<double> rest(lv.size, 0.0), energy(lv.size, 0.0);
   const double s2 = in.sigma * in.sigma;
   for (int k = 0; k < lv.nz; ++k)

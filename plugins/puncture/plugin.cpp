@@ -34,6 +34,7 @@ std::array<double, 3> vec3(const std::vector<double>& v) { return {v.at(0), v.at
 void declare(core::PluginBuilder& b) {
   auto hole = std::make_shared<Hole>();
   b.implements("puncture");
+  b.require("grid");  // the position is checked against grid.n and grid.dx
 
   b.real("bare_mass").doc("bare mass Mhat_BH of the puncture (hatted units)").required(1.0).greater_than(0);
   b.real_vector("position")
