@@ -62,10 +62,6 @@ class Star {
   /// written fields and their sources stay a consistent pair.
   StepReport step();
 
-  const StarFluid& fluid() const { return *fluid_; }
-  std::shared_ptr<StarFluid> fluid_service() const { return fluid_; }
-  const TovStar& tov() const { return tov_; }
-  const StarSettings& settings() const { return settings_; }
   double rhat_star() const { return 0.5 * (1.0 - settings_.x_a); }
   const std::vector<StepReport>& history() const { return history_; }
   /// star_axis.tsv: x, rho0, chi, eta, alpha and the TOV values at the same physical radius.

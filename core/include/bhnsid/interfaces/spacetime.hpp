@@ -82,13 +82,14 @@ struct MatterArrays {
   }
 };
 
-inline MatterArrays matter_arrays(const Grid& grid, const Fluid* fluid, int level) {
+/// The arrays for an explicit sigma and motion (diagnostics, tests).
+inline MatterArrays matter_arrays(const Grid& grid, double sigma, bool moving, int level) {
   MatterArrays m;
   m.rho0 = grid.data(grid.field_id(fields::rho0), 0, level);
   m.press = grid.data(grid.field_id(fields::press), 0, level);
   m.enthalpy = grid.data(grid.field_id(fields::enthalpy), 0, level);
-  m.sigma2 = fluid ? fluid->sigma() * fluid->sigma() : 1.0;
-  m.moving = fluid && fluid->moving();
+  m.sigma2 = sigma * sigma;
+  m.moving = moving;
   if (m.moving) {
     const int vel = grid.field_id(fields::fluid_velocity);
     const int beta = grid.has_field(fields::shift) ? grid.field_id(fields::shift) : -1;
@@ -98,6 +99,10 @@ inline MatterArrays matter_arrays(const Grid& grid, const Fluid* fluid, int leve
     }
   }
   return m;
+}
+
+inline MatterArrays matter_arrays(const Grid& grid, const Fluid* fluid, int level) {
+  return matter_arrays(grid, fluid ? fluid->sigma() : 1.0, fluid && fluid->moving(), level);
 }
 
 /// Index of component (a, b) of a symmetric tensor stored as xx, xy, xz, yy, yz, zz.
