@@ -9,7 +9,7 @@
 
 namespace bhnsid::multigrid {
 
-std::vector<RayStencil> robin_stencils(const Level& lv, const std::array<double, 3>& centre) {
+std::vector<RayStencil> robin_stencils(const Level& lv, const std::array<double, 3>& centre, bool two_point) {
   std::vector<RayStencil> rows;
   const int last[3] = {lv.nx - 1, lv.ny - 1, lv.nz - 1};
   for_face_points(lv, [&](int i, int j, int k) {
@@ -25,45 +25,68 @@ std::vector<RayStencil> robin_stencils(const Level& lv, const std::array<double,
       throw core::RunFailure(fmt::format(
           "multigrid: the Robin centre ({}, {}, {}) is within 1.5 cells of the face point ({}, {}, {}) on level {}",
           centre[0], centre[1], centre[2], xb[0], xb[1], xb[2], lv.index));
+    const int planes = two_point || reach < 2.5 * lv.dx ? 1 : 2;
+    // Ray weights of u(x_m) - u_inf: s_1 (two-point), or (4 s_1, -s_2) / 3.
+    double ray[2];
+    const double s1 = 1.0 - lv.dx / reach, s2 = 1.0 - 2.0 * lv.dx / reach;
+    if (planes == 1) {
+      ray[0] = s1;
+      ray[1] = 0;
+    } else {
+      ray[0] = 4.0 * s1 / 3.0;
+      ray[1] = -s2 / 3.0;
+    }
     RayStencil row;
     row.point = lv.at(i, j, k);
-    row.scale = 1.0 - lv.dx / reach;
-    // Per axis: the points it uses and their weights. The axis (or axes) with |X_a| = reach is
-    // exact: x_in lies on the grid plane one cell in. Other axes interpolate with 3 points around
-    // x_b's own index (shifted inward at the cube's edges), x_in lying within one cell of x_b.
-    int first[3], count[3];
-    double w[3][3];
-    const int own[3] = {i, j, k};
-    for (int a = 0; a < 3; ++a) {
-      const double t = (centre[a] + row.scale * X[a] - lv.origin[a]) / lv.dx;
-      const double nearest = std::round(t);
-      if (std::fabs(t - nearest) < 1e-9) {
-        first[a] = std::clamp(static_cast<int>(nearest), 0, last[a]);
-        count[a] = 1;
-        w[a][0] = 1;
-        continue;
-      }
-      first[a] = std::clamp(own[a] - 1, 0, last[a] - 2);
-      count[a] = 3;
-      const double u = t - first[a];  // nodes at 0, 1, 2
-      w[a][0] = 0.5 * (u - 1) * (u - 2);
-      w[a][1] = -u * (u - 2);
-      w[a][2] = 0.5 * u * (u - 1);
-    }
     row.index.fill(row.point);
     row.weight.fill(0.0);
+    const int own[3] = {i, j, k};
+    // The window per axis (shared by both planes): 3 indices containing own and both targets.
+    int first[3];
+    for (int a = 0; a < 3; ++a) {
+      const double t1 = (centre[a] + s1 * X[a] - lv.origin[a]) / lv.dx - own[a];  // |t1| <= 1
+      int f = own[a] - 1;
+      if (planes == 2 && t1 < -0.5) f = own[a] - 2;
+      if (planes == 2 && t1 > 0.5) f = own[a];
+      first[a] = std::clamp(f, 0, last[a] - 2);
+    }
     std::size_t c = 0;
-    for (int p = 0; p < count[0]; ++p)
-      for (int q = 0; q < count[1]; ++q)
-        for (int r = 0; r < count[2]; ++r) {
-          if (c == row.index.size())
-            throw core::RunFailure(fmt::format("multigrid: the Robin row of face point ({}, {}, {}) on level {} needs "
-                                               "interpolation along three axes",
-                                               i, j, k, lv.index));
-          row.index[c] = lv.at(first[0] + p, first[1] + q, first[2] + r);
-          row.weight[c] = w[0][p] * w[1][q] * w[2][r];
-          ++c;
+    for (int m = 0; m < planes; ++m) {
+      const double s = m == 0 ? s1 : s2;
+      int start[3], count[3];
+      double w[3][3];
+      // The axis (or axes) with |X_a| = reach is exact: x_m lies on a grid plane. Other axes
+      // interpolate with the window's 3 points.
+      for (int a = 0; a < 3; ++a) {
+        const double t = (centre[a] + s * X[a] - lv.origin[a]) / lv.dx;
+        const double nearest = std::round(t);
+        if (std::fabs(t - nearest) < 1e-9) {
+          start[a] = std::clamp(static_cast<int>(nearest), 0, last[a]);
+          count[a] = 1;
+          w[a][0] = 1;
+          continue;
         }
+        start[a] = first[a];
+        count[a] = 3;
+        const double u = t - first[a];  // nodes at 0, 1, 2
+        w[a][0] = 0.5 * (u - 1) * (u - 2);
+        w[a][1] = -u * (u - 2);
+        w[a][2] = 0.5 * u * (u - 1);
+      }
+      for (int p = 0; p < count[0]; ++p)
+        for (int q = 0; q < count[1]; ++q)
+          for (int r = 0; r < count[2]; ++r) {
+            if (c == row.index.size() / 2 * (m + 1))
+              throw core::RunFailure(fmt::format("multigrid: the Robin row of face point ({}, {}, {}) on level {} "
+                                                 "needs interpolation along three axes",
+                                                 i, j, k, lv.index));
+            row.index[c] = lv.at(start[0] + p, start[1] + q, start[2] + r);
+            row.weight[c] = ray[m] * w[0][p] * w[1][q] * w[2][r];
+            ++c;
+          }
+      c = row.index.size() / 2;
+    }
+    row.scale = ray[0] + ray[1];
     rows.push_back(row);
   });
   return rows;
@@ -71,9 +94,10 @@ std::vector<RayStencil> robin_stencils(const Level& lv, const std::array<double,
 
 namespace {
 
-double interpolated(const RayStencil& row, const double* u) {
+// sum_k weight[k] (u[index[k]] - u_inf)
+double ray_sum(const RayStencil& row, double u_inf, const double* u) {
   double v = 0;
-  for (std::size_t c = 0; c < row.index.size(); ++c) v += row.weight[c] * u[row.index[c]];
+  for (std::size_t c = 0; c < row.index.size(); ++c) v += row.weight[c] * (u[row.index[c]] - u_inf);
   return v;
 }
 
@@ -87,7 +111,7 @@ void robin_residual(const std::vector<RayStencil>& rows, double u_inf, const dou
       res[p] = 0;
       continue;
     }
-    const double b = (u[p] - u_inf) - row.scale * (interpolated(row, u) - u_inf);
+    const double b = (u[p] - u_inf) - ray_sum(row, u_inf, u);
     res[p] = (rhs ? rhs[p] : 0.0) - b;
   }
 }
@@ -97,7 +121,7 @@ void robin_relax(const std::vector<RayStencil>& rows, double u_inf, double* u, c
   for (const RayStencil& row : rows) {
     const std::ptrdiff_t p = row.point;
     if (fixed && fixed[p]) continue;
-    u[p] = u_inf + row.scale * (interpolated(row, u) - u_inf) + (rhs ? rhs[p] : 0.0);
+    u[p] = u_inf + ray_sum(row, u_inf, u) + (rhs ? rhs[p] : 0.0);
   }
 }
 

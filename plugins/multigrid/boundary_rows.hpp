@@ -1,24 +1,29 @@
 #pragma once
 // Outer-boundary rows of the system: the Robin condition (u - u_inf) + (x - x0) . grad u = 0 at
-// every stored point on a face of the cube (physics-notes §5.2). It says that r (u - u_inf) is
-// constant along each ray from the centre x0, and that is how it is discretised here: for a face
-// point x_b and the point x_in = x0 + s (x_b - x0), s = 1 - h / |x_b - x0|_inf, one cell further
-// in along the same ray,
-//     (u_b - u_inf) = s (u(x_in) - u_inf),
-// exact for every u_inf + f(angles)/|x - x0|, like the differential form. x_in lies on the grid
-// plane one cell inside the face, so u(x_in) is interpolated in the (at most two) tangential
-// directions, by 3-point Lagrange interpolation on the points around x_b's own index: O(h^3).
+// every stored point on a face of the cube (physics-notes §5.2). It says that v = r (u - u_inf) is
+// constant along each ray from the centre x0, dv/dr = 0, and that is how it is discretised here:
+// for a face point x_b the points x_m = x0 + s_m (x_b - x0), s_m = 1 - m h / |x_b - x0|_inf, lie on
+// the same ray on the grid planes m = 1, 2 cells inside the face, equally spaced in r, and the
+// one-sided second-order difference 3 v_b - 4 v_1 + v_2 = 0 gives the row
+//     (u_b - u_inf) = (4 s_1 (u(x_1) - u_inf) - s_2 (u(x_2) - u_inf)) / 3,
+// exact for every u_inf + f(angles)/|x - x0| like the differential form, and a second-order
+// approximation of dv/dr = 0 at the face otherwise. u(x_m) is interpolated in the (at most two)
+// tangential directions by 3-point Lagrange interpolation: O(h^3).
 // The order matters: the rows fix the level of the whole solution through the factor
-// 1/(1 - s) = r/h, so an interpolation error e becomes a global error e r/h. Trilinear
-// interpolation (e ~ h^2) made the solution only first-order accurate near the faces (the ADM
-// mass from the 1/r falloff converged like h/r_c); quadratic gives O(h^2) everywhere. The
-// stencil stays within one point of x_b tangentially (two, inward, at edges), so the rows reach
-// no further than the coarse solver's colouring allows. The literal form with one-sided normal
-// derivatives and centred tangential ones (§5.2) was tried first: its rows are not diagonally
-// dominant and red-black Gauss-Seidel on them diverged (residual x1.4 per sweep). Here each row
-// fixes u_b from interior values with weights summing to s < 1 (the few negative weights of the
-// quadratic are at most 1/8), so relaxing the rows converges. The rows are equations of the FAS
+// 1/(1 - s_1) = r/h, so a row error e becomes a global error e r/h. Trilinear interpolation
+// (e ~ h^2) made the solution only first-order accurate near the faces (the ADM mass from the 1/r
+// falloff converged like h/r_c). So did the two-point row (u_b - u_inf) = s_1 (u(x_1) - u_inf) used
+// before: it is dv/dr = 0 imposed half a cell inside the face, an O(h) error for every field that
+// is not a pure monopole (the ball's dipole, a boosted puncture's chi and eta converged at first
+// order with r_c fixed). The interpolation windows are 3 consecutive indices that contain x_b's own
+// index and both targets (shifted toward the centre where the targets are more than half a cell
+// off), so no row reaches beyond 4 consecutive indices per axis: the coarse solver's colouring
+// (mod 4) relies on that. The literal form with one-sided normal derivatives and centred tangential
+// ones (§5.2) was tried first: its rows are not diagonally dominant and red-black Gauss-Seidel on
+// them diverged (residual x1.4 per sweep). Here each row fixes u_b from other values with weights
+// summing to (4 s_1 - s_2)/3 < 1, so relaxing the rows converges. The rows are equations of the FAS
 // system like the interior ones: relaxed in every sweep, their residuals injected to the coarse level.
+// A level with a face closer than 2.5 cells to the centre (the coarsest) keeps the two-point row.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -33,17 +38,18 @@ struct RobinRow {
   std::array<double, 3> centre{};
 };
 
-/// One face point's row: u[point] - u_inf = scale (sum_k weight[k] u[index[k]] - u_inf).
+/// One face point's row: u[point] - u_inf = sum_k weight[k] (u[index[k]] - u_inf).
 struct RayStencil {
   std::ptrdiff_t point;
-  std::array<std::ptrdiff_t, 9> index;  ///< up to 3 x 3 tangential points (weight 0 where unused)
-  std::array<double, 9> weight;
-  double scale;
+  std::array<std::ptrdiff_t, 18> index;  ///< up to 3 x 3 tangential points on each of two planes (weight 0 where unused)
+  std::array<double, 18> weight;
+  double scale;  ///< sum of the weights, < 1
 };
 
 /// The rows of every face point of a level for a condition about `centre`; throws
-/// core::RunFailure when the centre is closer than 1.5 cells to a face.
-std::vector<RayStencil> robin_stencils(const Level& lv, const std::array<double, 3>& centre);
+/// core::RunFailure when the centre is closer than 1.5 cells to a face. `two_point` forces the
+/// first-order row of every level (kept to measure what the second-order one gains).
+std::vector<RayStencil> robin_stencils(const Level& lv, const std::array<double, 3>& centre, bool two_point);
 
 /// res = rhs - B(u) at the face points (rhs may be nullptr: zero); 0 at held points.
 void robin_residual(const std::vector<RayStencil>& rows, double u_inf, const double* u, const double* rhs,

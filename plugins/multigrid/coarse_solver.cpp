@@ -57,23 +57,21 @@ void CoarseSolver::factorise(int level, const Eigen::VectorXd& r0) {
   std::vector<Eigen::Triplet<double>> entries;
   Eigen::VectorXd r1;
   std::vector<double> step(unknowns_.size());
-  // Within a row's reach (interior: +-1 per axis; faces: the inward points 0..2), exactly one point
-  // of each residue class mod 3, which identifies the column a changed row belongs to.
-  auto window_start = [&](int index, int axis) {
-    const bool below_is_image = axis == 2 && lv.z_symmetry;
-    if (index == 0 && !below_is_image) return 0;
-    if (index == last[axis]) return last[axis] - 2;
-    return index - 1;
-  };
+  // Every row depends on at most 4 consecutive indices per axis (interior: +-1; Robin rows: the
+  // inward points 0..2 along the normal and a 3-point window next to their own index along the
+  // faces, boundary_rows.hpp), all inside the window starting at index - 2, clamped to the level:
+  // exactly one point of each residue class mod 4 lies in it, which identifies the column a
+  // changed row belongs to.
+  auto window_start = [&](int index, int axis) { return std::max(0, std::min(index - 2, last[axis] - 3)); };
   for (std::size_t si = 0; si < solver_.slots_.size(); ++si) {
     const Slot& s = solver_.slots_[si];
     for (int c = 0; c < s.ncomp; ++c)
-      for (int colour = 0; colour < 27; ++colour) {
-        const int ci = colour % 3, cj = (colour / 3) % 3, ck = colour / 9;
+      for (int colour = 0; colour < 64; ++colour) {
+        const int ci = colour % 4, cj = (colour / 4) % 4, ck = colour / 16;
         bool any = false;
         for (std::size_t r = 0; r < unknowns_.size(); ++r) {
           const Unknown& x = unknowns_[r];
-          if (x.slot != static_cast<int>(si) || x.comp != c || x.i % 3 != ci || x.j % 3 != cj || x.k % 3 != ck) continue;
+          if (x.slot != static_cast<int>(si) || x.comp != c || x.i % 4 != ci || x.j % 4 != cj || x.k % 4 != ck) continue;
           double* u = value(x, level, false);
           step[r] = 1e-7 * std::max(1.0, std::fabs(*u));
           *u += step[r];
@@ -91,7 +89,7 @@ void CoarseSolver::factorise(int level, const Eigen::VectorXd& r0) {
           int col_index[3];
           for (int a = 0; a < 3; ++a) {
             int v = window_start(idx[a], a);
-            while (((v % 3) + 3) % 3 != want[a]) ++v;
+            while (v % 4 != want[a]) ++v;
             col_index[a] = v;
           }
           if (col_index[2] < 0 || col_index[2] > last[2] || col_index[0] > last[0] || col_index[1] > last[1]) continue;
@@ -103,7 +101,7 @@ void CoarseSolver::factorise(int level, const Eigen::VectorXd& r0) {
         }
         for (std::size_t r = 0; r < unknowns_.size(); ++r) {
           const Unknown& x = unknowns_[r];
-          if (x.slot != static_cast<int>(si) || x.comp != c || x.i % 3 != ci || x.j % 3 != cj || x.k % 3 != ck) continue;
+          if (x.slot != static_cast<int>(si) || x.comp != c || x.i % 4 != ci || x.j % 4 != cj || x.k % 4 != ck) continue;
           *value(x, level, false) -= step[r];
         }
         solver_.fill_ghosts(level, 0);

@@ -54,7 +54,7 @@ FasSolver::FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations
         throw RunFailure(fmt::format("multigrid: equation '{}' gives {} asymptotic values for {} components", s.name,
                                      s.boundary.u_inf.size(), s.ncomp));
       for (int c = 0; c < s.ncomp; ++c) s.robin.push_back(RobinRow{s.boundary.u_inf[static_cast<std::size_t>(c)], s.boundary.centre});
-      for (int l = 0; l < grid.num_levels(); ++l) s.rays.push_back(robin_stencils(grid.level(l), s.boundary.centre));
+      for (int l = 0; l < grid.num_levels(); ++l) s.rays.push_back(robin_stencils(grid.level(l), s.boundary.centre, false));
     }
     if (const std::string mask = eq->excision_mask(); !mask.empty()) s.mask = grid.mask_id(mask);
     for (const std::string& name : eq->coefficients()) s.coefficients.push_back(grid.field_id(name));

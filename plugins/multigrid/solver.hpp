@@ -18,7 +18,7 @@ enum class CycleType { v, w, f };
 
 struct Settings {
   CycleType cycle = CycleType::v;
-  int pre_sweeps = 2, post_sweeps = 1;
+  int pre_sweeps = 2, post_sweeps = 2;
   double omega = 1.15;           ///< over-relaxation of the point Newton steps
   bool fmg = true;
   int fmg_cycles = 1;

@@ -13,14 +13,26 @@ Cube excision_cube(double bare_mass, const std::array<double, 3>& position, doub
   c.centre = position;
   c.side = std::max({0.5 * bare_mass, 3.0 * finest_dx, min_side});
   c.half = 0.5 * c.side + 1e-12 * finest_dx;
+  for (std::size_t a = 0; a < 3; ++a) {
+    c.lo[a] = position[a] - c.half;
+    c.hi[a] = position[a] + c.half;
+  }
   return c;
+}
+
+void snap_to_lattice(Cube& cube, const Level& finest, double spacing) {
+  const double slack = 1e-12 * finest.dx;
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double o = finest.origin[a];
+    cube.lo[a] = o + spacing * std::round((cube.centre[a] - 0.5 * cube.side - o) / spacing) - slack;
+    cube.hi[a] = o + spacing * std::round((cube.centre[a] + 0.5 * cube.side - o) / spacing) + slack;
+  }
 }
 
 namespace {
 
 bool inside(const Cube& c, double x, double y, double z) {
-  return std::fmax(std::fabs(x - c.centre[0]), std::fmax(std::fabs(y - c.centre[1]), std::fabs(z - c.centre[2]))) <=
-         c.half;
+  return c.lo[0] <= x && x <= c.hi[0] && c.lo[1] <= y && y <= c.hi[1] && c.lo[2] <= z && z <= c.hi[2];
 }
 
 int nearest_index(double coordinate, double origin, double dx, int lo, int hi) {
@@ -69,7 +81,7 @@ std::string cube_outside_grid(const Cube& cube, const Level& finest) {
   const char* axes = "xyz";
   for (int a = 0; a < 3; ++a) {
     // With equatorial symmetry z = 0 is a symmetry plane, not a face: only |z| + s/2 matters there too.
-    const double reach = std::fabs(cube.centre[static_cast<std::size_t>(a)]) + cube.half;
+    const double reach = std::fmax(std::fabs(cube.lo[static_cast<std::size_t>(a)]), std::fabs(cube.hi[static_cast<std::size_t>(a)]));
     if (reach >= rc)
       return fmt::format("the excision cube (side {:.6g} about xhat_BH = ({:.6g}, {:.6g}, {:.6g})) reaches {} = {:.6g}, "
                          "at or beyond the outer face at {:.6g}",

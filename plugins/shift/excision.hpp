@@ -14,15 +14,25 @@ namespace bhnsid::shift {
 
 enum class ExcisionValue { lorentz, plain };
 
-/// The cube: centre xhat_BH, full side s and the half size used for the inside test (s/2 + 1e-12 dx).
+/// The cube: centre xhat_BH, full side s, the half size s/2 + 1e-12 dx, and the bounds of the
+/// inside test per axis, lo <= x <= hi (centre -+ half, or the lattice planes of snap_to_lattice).
 struct Cube {
   std::array<double, 3> centre{};
   double side = 0;
   double half = 0;
+  std::array<double, 3> lo{}, hi{};
 };
 
-/// s = max(Mhat/2, 3 dx, min_side), half = s/2 + 1e-12 dx.
+/// s = max(Mhat/2, 3 dx, min_side), half = s/2 + 1e-12 dx, bounds centre -+ half.
 Cube excision_cube(double bare_mass, const std::array<double, 3>& position, double finest_dx, double min_side = 0);
+
+/// Moves each face of the cube to the nearest plane of the lattice origin + m D (D = dx 2^p, checked
+/// by the caller). A staircase cube whose faces fall between grid points excises a slightly
+/// different region at every dx: a Dirichlet boundary displaced by O(dx), which makes the shift
+/// converge at first order. The lattice planes are grid planes at dx, dx/2, dx/4, ... with the
+/// same cube of the grid, so a convergence series with one D excises exactly the same region. Each
+/// face moves by at most D/2.
+void snap_to_lattice(Cube& cube, const Level& finest, double spacing);
 
 /// Writes the mask of one level into `bytes` (Level::size bytes; 1 excised, 0 elsewhere and on the
 /// ghosts): the points inside the cube (with equatorial symmetry also those whose mirror image is),

@@ -21,9 +21,10 @@ struct State {
 void log_excision(const Context& ctx, const ExcisionReport& r) {
   std::string coarse;
   for (int l : r.nearest_levels) coarse += (coarse.empty() ? "" : ", ") + std::to_string(l);
-  ctx.log().info("shift: excision cube of side {:.6g} about ({:.6g}, {:.6g}, {:.6g}), {} finest-level points{}; "
-                 "beta_0 = ({:.9g}, {:.9g}, {:.9g})",
-                 r.cube.side, r.cube.centre[0], r.cube.centre[1], r.cube.centre[2], r.finest_points,
+  ctx.log().info("shift: excision cube of side {:.6g} about ({:.6g}, {:.6g}, {:.6g}), held [{:.6g}, {:.6g}] x [{:.6g}, "
+                 "{:.6g}] x [{:.6g}, {:.6g}], {} finest-level points{}; beta_0 = ({:.9g}, {:.9g}, {:.9g})",
+                 r.cube.side, r.cube.centre[0], r.cube.centre[1], r.cube.centre[2], r.cube.lo[0], r.cube.hi[0],
+                 r.cube.lo[1], r.cube.hi[1], r.cube.lo[2], r.cube.hi[2], r.finest_points,
                  coarse.empty() ? std::string{} : "; nearest point held on level(s) " + coarse, r.beta0[0], r.beta0[1],
                  r.beta0[2]);
 }
@@ -41,6 +42,13 @@ void declare(core::PluginBuilder& b) {
   b.real("excision_min_side")
       .doc("smallest full side of the excision cube (hatted length); the side is max(Mhat_BH/2, 3 dx, this). A "
            "fixed side lets runs at several dx excise the same region (convergence studies); 0 for the paper's rule")
+      .default_value(0.0)
+      .at_least(0);
+  b.real("excision_lattice")
+      .doc("hatted length D = dx 2^p (p >= 0): each face of the excision cube moves to the nearest plane of the "
+           "lattice of spacing D through the grid's corner, so that runs at dx, dx/2, dx/4 with the same D and r_c "
+           "excise exactly the same region (second-order convergence studies); 0: the cube exactly about the hole, "
+           "a staircase that changes with dx (first-order errors next to it)")
       .default_value(0.0)
       .at_least(0);
   b.integer("local_sweeps")
@@ -66,6 +74,7 @@ void declare(core::PluginBuilder& b) {
          ctx.params().string("excision_value") == "plain" ? ExcisionValue::plain : ExcisionValue::lorentz;
      settings.source_scale = ctx.params().real("test_source_scale");
      settings.min_side = ctx.params().real("excision_min_side");
+     settings.lattice = ctx.params().real("excision_lattice");
      settings.local_sweeps = static_cast<int>(ctx.params().integer("local_sweeps"));
      settings.local_width = static_cast<int>(ctx.params().integer("local_width"));
      state->equation = std::make_shared<ShiftEquation>(grid, fluid, puncture, settings);

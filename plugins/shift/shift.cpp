@@ -77,11 +77,19 @@ ShiftEquation::ShiftEquation(Grid& grid, const Fluid* fluid, const Puncture* pun
     enthalpy_ = grid.add_field(fields::enthalpy, scalar);
     velocity_ = grid.add_field(fields::fluid_velocity, vector, core::TimeParity::odd);
   }
+  if (settings_.lattice > 0) {
+    const double ratio = settings_.lattice / grid.finest().dx, p = std::round(std::log2(ratio));
+    if (!(ratio >= 1 - 1e-9) || std::fabs(ratio - std::exp2(p)) > 1e-9 * ratio)
+      throw core::InputError(fmt::format("shift: excision_lattice = {:.9g} must be dx times a power of 2 (dx = {:.9g} "
+                                         "on the finest level: {:.9g}, {:.9g}, ...)",
+                                         settings_.lattice, grid.finest().dx, grid.finest().dx, 2 * grid.finest().dx));
+    settings_.lattice = grid.finest().dx * std::exp2(p);  // the exact lattice, free of the parameter's rounding
+  }
   if (puncture_) {
     check_puncture<core::InputError>(puncture_->bare_mass(), puncture_->position(), puncture_->momentum());
     // d_i of a scalar: vector kinds give the right parities (d_z odd in z).
     dphi_ = grid.add_field(dphi_puncture_field, vector);
-    const Cube cube = excision_cube(puncture_->bare_mass(), puncture_->position(), grid.finest().dx, settings_.min_side);
+    const Cube cube = excision(puncture_->bare_mass(), puncture_->position());
     // The grid builds the plain cube on every level; update_puncture() rewrites it with the
     // nearest-point rule and whenever the puncture moves.
     mask_ = grid.add_mask(fields::excision_mask, ExcisionRegion{ExcisionRegion::Shape::cube, cube.centre, cube.half});
@@ -104,10 +112,16 @@ void ShiftEquation::check_puncture(double mass, const std::array<double, 3>& pos
     throw E(fmt::format("shift: with equatorial symmetry the hole must lie in and move along z = 0 (position z = {}, "
                         "momentum z = {}; puncture.position, puncture.momentum)",
                         position[2], momentum[2]));
-  const std::string outside = cube_outside_grid(excision_cube(mass, position, grid_.finest().dx, settings_.min_side), grid_.finest());
+  const std::string outside = cube_outside_grid(excision(mass, position), grid_.finest());
   if (!outside.empty())
     throw E(fmt::format("shift: {}: move the hole or enlarge the grid ({}; grid.n, grid.dx)", outside,
                         puncture_parameters));
+}
+
+Cube ShiftEquation::excision(double mass, const std::array<double, 3>& position) const {
+  Cube cube = excision_cube(mass, position, grid_.finest().dx, settings_.min_side);
+  if (settings_.lattice > 0) snap_to_lattice(cube, grid_.finest(), settings_.lattice);
+  return cube;
 }
 
 OuterBoundary ShiftEquation::boundary() const {
@@ -243,7 +257,7 @@ ExcisionReport ShiftEquation::update_puncture() {
   const double mass = puncture_->bare_mass();
   const std::array<double, 3> position = puncture_->position(), momentum = puncture_->momentum();
   check_puncture<core::RunFailure>(mass, position, momentum);
-  report.cube = excision_cube(mass, position, grid_.finest().dx, settings_.min_side);
+  report.cube = excision(mass, position);
   report.beta0 = excision_shift(momentum, mass, settings_.excision_value);
   const int coarsest = grid_.num_levels() - 1;
   if (!built_ || mass != last_mass_ || position != last_position_) {

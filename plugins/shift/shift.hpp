@@ -19,6 +19,7 @@ struct Settings {
   ExcisionValue excision_value = ExcisionValue::lorentz;
   double source_scale = 1;  ///< TEST ONLY factor on the Ahat term
   double min_side = 0;      ///< smallest full side of the excision cube (hatted); 0: max(M/2, 3 dx) alone
+  double lattice = 0;       ///< > 0: faces of the excision cube on the planes of this lattice (snap_to_lattice)
   int local_sweeps = 4;     ///< extra red-black sweeps on the box about the hole after every sweep
   int local_width = 4;      ///< the box: the held points' bounding box widened by this many points
 };
@@ -58,6 +59,8 @@ class ShiftEquation final : public EllipticEquation {
  private:
   Sources sources(int level) const;
   /// Throws E (InputError at SETUP, RunFailure later) when the puncture cannot be excised.
+  /// The excision cube of the hole: excision_cube, snapped to the lattice when settings say so.
+  Cube excision(double mass, const std::array<double, 3>& position) const;
   template <class E>
   void check_puncture(double mass, const std::array<double, 3>& position, const std::array<double, 3>& momentum) const;
   void fill_dphi_puncture(double mass, const std::array<double, 3>& position);
