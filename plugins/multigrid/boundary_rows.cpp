@@ -9,8 +9,8 @@
 
 namespace bhnsid::multigrid {
 
-std::vector<RayStencil> robin_stencils(const Level& lv, const std::array<double, 3>& centre, bool two_point) {
-  std::vector<RayStencil> rows;
+RobinRows robin_stencils(const Level& lv, const std::array<double, 3>& centre, bool two_point) {
+  RobinRows rows;
   const int last[3] = {lv.nx - 1, lv.ny - 1, lv.nz - 1};
   for_face_points(lv, [&](int i, int j, int k) {
     const double xb[3] = {lv.x(i), lv.y(j), lv.z(k)};
@@ -36,10 +36,7 @@ std::vector<RayStencil> robin_stencils(const Level& lv, const std::array<double,
       ray[0] = 4.0 * s1 / 3.0;
       ray[1] = -s2 / 3.0;
     }
-    RayStencil row;
-    row.point = lv.at(i, j, k);
-    row.index.fill(row.point);
-    row.weight.fill(0.0);
+    rows.point.push_back(lv.at(i, j, k));
     const int own[3] = {i, j, k};
     // The window per axis (shared by both planes): 3 indices containing own and both targets.
     int first[3];
@@ -50,7 +47,6 @@ std::vector<RayStencil> robin_stencils(const Level& lv, const std::array<double,
       if (planes == 2 && t1 > 0.5) f = own[a];
       first[a] = std::clamp(f, 0, last[a] - 2);
     }
-    std::size_t c = 0;
     for (int m = 0; m < planes; ++m) {
       const double s = m == 0 ? s1 : s2;
       int start[3], count[3];
@@ -73,55 +69,78 @@ std::vector<RayStencil> robin_stencils(const Level& lv, const std::array<double,
         w[a][1] = -u * (u - 2);
         w[a][2] = 0.5 * u * (u - 1);
       }
+      if (count[0] * count[1] * count[2] > 9)
+        throw core::RunFailure(fmt::format("multigrid: the Robin row of face point ({}, {}, {}) on level {} needs "
+                                           "interpolation along three axes",
+                                           i, j, k, lv.index));
       for (int p = 0; p < count[0]; ++p)
         for (int q = 0; q < count[1]; ++q)
           for (int r = 0; r < count[2]; ++r) {
-            if (c == row.index.size() / 2 * (m + 1))
-              throw core::RunFailure(fmt::format("multigrid: the Robin row of face point ({}, {}, {}) on level {} "
-                                                 "needs interpolation along three axes",
-                                                 i, j, k, lv.index));
-            row.index[c] = lv.at(start[0] + p, start[1] + q, start[2] + r);
-            row.weight[c] = ray[m] * w[0][p] * w[1][q] * w[2][r];
-            ++c;
+            const double weight = ray[m] * w[0][p] * w[1][q] * w[2][r];
+            if (weight == 0) continue;
+            rows.index.push_back(lv.at(start[0] + p, start[1] + q, start[2] + r));
+            rows.weight.push_back(weight);
           }
-      c = row.index.size() / 2;
     }
-    row.scale = ray[0] + ray[1];
-    rows.push_back(row);
+    rows.begin.push_back(rows.index.size());
+    rows.scale.push_back(ray[0] + ray[1]);
   });
   return rows;
 }
 
 namespace {
 
-// sum_k weight[k] (u[index[k]] - u_inf)
-double ray_sum(const RayStencil& row, double u_inf, const double* u) {
+// sum over the row's entries of weight (u - u_inf)
+inline double ray_sum(const RobinRows& rows, std::size_t r, double u_inf, const double* u) {
   double v = 0;
-  for (std::size_t c = 0; c < row.index.size(); ++c) v += row.weight[c] * (u[row.index[c]] - u_inf);
+  for (std::size_t e = rows.begin[r]; e < rows.begin[r + 1]; ++e) v += rows.weight[e] * (u[rows.index[e]] - u_inf);
   return v;
 }
 
 }  // namespace
 
-void robin_residual(const std::vector<RayStencil>& rows, double u_inf, const double* u, const double* rhs,
-                    const std::uint8_t* fixed, double* res) {
-  for (const RayStencil& row : rows) {
-    const std::ptrdiff_t p = row.point;
+void robin_residual(const RobinRows& rows, double u_inf, const double* u, const double* rhs, const std::uint8_t* fixed,
+                    double* res) {
+  const auto n = static_cast<std::ptrdiff_t>(rows.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t r = 0; r < n; ++r) {
+    const std::ptrdiff_t p = rows.point[static_cast<std::size_t>(r)];
     if (fixed && fixed[p]) {
       res[p] = 0;
       continue;
     }
-    const double b = (u[p] - u_inf) - ray_sum(row, u_inf, u);
+    const double b = (u[p] - u_inf) - ray_sum(rows, static_cast<std::size_t>(r), u_inf, u);
     res[p] = (rhs ? rhs[p] : 0.0) - b;
   }
 }
 
-void robin_relax(const std::vector<RayStencil>& rows, double u_inf, double* u, const double* rhs,
-                 const std::uint8_t* fixed) {
-  for (const RayStencil& row : rows) {
-    const std::ptrdiff_t p = row.point;
-    if (fixed && fixed[p]) continue;
-    u[p] = u_inf + ray_sum(row, u_inf, u) + (rhs ? rhs[p] : 0.0);
+void robin_relax(const RobinRows& rows, const std::vector<RobinTarget>& targets) {
+  const auto n = static_cast<std::ptrdiff_t>(rows.size());
+  const std::size_t nt = targets.size();
+  rows.next.resize(rows.size() * nt);
+  double* next = rows.next.data();
+#pragma omp parallel
+  {
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t r = 0; r < n; ++r) {
+      const auto q = static_cast<std::size_t>(r);
+      const std::ptrdiff_t p = rows.point[q];
+      for (std::size_t t = 0; t < nt; ++t) next[q * nt + t] = 0;
+      for (std::size_t e = rows.begin[q]; e < rows.begin[q + 1]; ++e) {
+        const double w = rows.weight[e];
+        const std::ptrdiff_t i = rows.index[e];
+        for (std::size_t t = 0; t < nt; ++t) next[q * nt + t] += w * (targets[t].u[i] - targets[t].u_inf);
+      }
+      for (std::size_t t = 0; t < nt; ++t) {
+        const RobinTarget& x = targets[t];
+        next[q * nt + t] = x.fixed && x.fixed[p] ? x.u[p] : x.u_inf + next[q * nt + t] + (x.rhs ? x.rhs[p] : 0.0);
+      }
+    }
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t r = 0; r < n; ++r) {
+      const auto q = static_cast<std::size_t>(r);
+      for (std::size_t t = 0; t < nt; ++t) targets[t].u[rows.point[q]] = next[q * nt + t];
+    }
   }
 }
 

@@ -38,26 +38,43 @@ struct RobinRow {
   std::array<double, 3> centre{};
 };
 
-/// One face point's row: u[point] - u_inf = sum_k weight[k] (u[index[k]] - u_inf).
-struct RayStencil {
-  std::ptrdiff_t point;
-  std::array<std::ptrdiff_t, 18> index;  ///< up to 3 x 3 tangential points on each of two planes (weight 0 where unused)
-  std::array<double, 18> weight;
-  double scale;  ///< sum of the weights, < 1
+/// The rows of every face point of a level, stored compactly (weights that vanish are dropped):
+/// row r says u[point[r]] - u_inf = sum over e in [begin[r], begin[r+1]) of weight[e] (u[index[e]] - u_inf).
+struct RobinRows {
+  std::vector<std::ptrdiff_t> point;
+  std::vector<std::size_t> begin{0};
+  std::vector<std::ptrdiff_t> index;
+  std::vector<double> weight;
+  std::vector<double> scale;         ///< per row: the sum of its weights, < 1
+  mutable std::vector<double> next;  ///< scratch of robin_relax
+  std::size_t size() const { return point.size(); }
 };
 
 /// The rows of every face point of a level for a condition about `centre`; throws
 /// core::RunFailure when the centre is closer than 1.5 cells to a face. `two_point` forces the
 /// first-order row of every level (kept to measure what the second-order one gains).
-std::vector<RayStencil> robin_stencils(const Level& lv, const std::array<double, 3>& centre, bool two_point);
+RobinRows robin_stencils(const Level& lv, const std::array<double, 3>& centre, bool two_point);
 
 /// res = rhs - B(u) at the face points (rhs may be nullptr: zero); 0 at held points.
-void robin_residual(const std::vector<RayStencil>& rows, double u_inf, const double* u, const double* rhs,
-                    const std::uint8_t* fixed, double* res);
+void robin_residual(const RobinRows& rows, double u_inf, const double* u, const double* rhs, const std::uint8_t* fixed,
+                    double* res);
 
-/// Each face point solved for its own row, in turn (Gauss-Seidel).
-void robin_relax(const std::vector<RayStencil>& rows, double u_inf, double* u, const double* rhs,
-                 const std::uint8_t* fixed);
+/// One array whose face points obey the rows.
+struct RobinTarget {
+  double* u;
+  double u_inf;
+  const double* rhs;            ///< nullptr: zero
+  const std::uint8_t* fixed;    ///< nullptr: nothing held
+};
+
+/// Every face point of every target solved for its own row from the values before the call
+/// (Jacobi: the rows are independent of each other but for the few that lean on another face
+/// point, a contraction with weights < 1/8, and Jacobi lets the threads share them). All targets
+/// in one pass, so that the rows' indices and weights stream through memory once.
+void robin_relax(const RobinRows& rows, const std::vector<RobinTarget>& targets);
+inline void robin_relax(const RobinRows& rows, double u_inf, double* u, const double* rhs, const std::uint8_t* fixed) {
+  robin_relax(rows, {RobinTarget{u, u_inf, rhs, fixed}});
+}
 
 /// res = 0 at every face point (Dirichlet rows are satisfied by construction).
 void zero_faces(const Level& lv, double* res);

@@ -54,7 +54,13 @@ FasSolver::FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations
         throw RunFailure(fmt::format("multigrid: equation '{}' gives {} asymptotic values for {} components", s.name,
                                      s.boundary.u_inf.size(), s.ncomp));
       for (int c = 0; c < s.ncomp; ++c) s.robin.push_back(RobinRow{s.boundary.u_inf[static_cast<std::size_t>(c)], s.boundary.centre});
-      for (int l = 0; l < grid.num_levels(); ++l) s.rays.push_back(robin_stencils(grid.level(l), s.boundary.centre, false));
+      const auto known = std::find(row_centres_.begin(), row_centres_.end(), s.boundary.centre);
+      s.rows = static_cast<int>(known - row_centres_.begin());
+      if (known == row_centres_.end()) {
+        row_centres_.push_back(s.boundary.centre);
+        row_sets_.emplace_back();
+        for (int l = 0; l < grid.num_levels(); ++l) row_sets_.back().push_back(robin_stencils(grid.level(l), s.boundary.centre, false));
+      }
     }
     if (const std::string mask = eq->excision_mask(); !mask.empty()) s.mask = grid.mask_id(mask);
     for (const std::string& name : eq->coefficients()) s.coefficients.push_back(grid.field_id(name));
@@ -93,16 +99,18 @@ void FasSolver::smooth(int l, int sweeps) {
   const Level& lv = grid_.level(l);
   const auto start = std::chrono::steady_clock::now();
   auto boundary_rows = [&] {
-    bool any_robin = false;
-    for (const Slot& s : slots_) {
-      if (s.robin.empty()) continue;
-      any_robin = true;
-      const RelaxArgs a = args(s, l);
-      for (int c = 0; c < s.ncomp; ++c)
-        robin_relax(s.rays[static_cast<std::size_t>(l)], s.robin[static_cast<std::size_t>(c)].u_inf, grid_.data(s.u, c, l),
-                    a.rhs ? a.rhs[c] : nullptr, a.fixed);
+    for (std::size_t set = 0; set < row_sets_.size(); ++set) {
+      std::vector<RobinTarget> targets;
+      for (const Slot& s : slots_) {
+        if (s.rows != static_cast<int>(set)) continue;
+        const RelaxArgs a = args(s, l);
+        for (int c = 0; c < s.ncomp; ++c)
+          targets.push_back(RobinTarget{grid_.data(s.u, c, l), s.robin[static_cast<std::size_t>(c)].u_inf,
+                                        a.rhs ? a.rhs[c] : nullptr, a.fixed});
+      }
+      robin_relax(row_sets_[set][static_cast<std::size_t>(l)], targets);
     }
-    if (any_robin) fill_ghosts(l, unknowns);
+    if (!row_sets_.empty()) fill_ghosts(l, unknowns);
   };
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     for (const Slot& s : slots_) {
@@ -129,7 +137,7 @@ void FasSolver::residual(int l) {
       if (s.robin.empty())
         zero_faces(lv, out[static_cast<std::size_t>(c)]);
       else
-        robin_residual(s.rays[static_cast<std::size_t>(l)], s.robin[static_cast<std::size_t>(c)].u_inf,
+        robin_residual(rows(s, l), s.robin[static_cast<std::size_t>(c)].u_inf,
                        grid_.data(s.u, c, l), rhs, a.fixed, out[static_cast<std::size_t>(c)]);
     }
   }
@@ -162,7 +170,7 @@ void FasSolver::descend(int l) {
       restrict_full_weighting_minus(fine, coarse, r, minus_lu[static_cast<std::size_t>(c)], f, !s.robin.empty());
       if (!s.robin.empty()) {
         // Boundary rows: rhs = B(u_H) + injected fine residual; robin_residual with no rhs gives -B.
-        robin_residual(s.rays[static_cast<std::size_t>(cl)], s.robin[static_cast<std::size_t>(c)].u_inf,
+        robin_residual(rows(s, cl), s.robin[static_cast<std::size_t>(c)].u_inf,
                        grid_.data(s.u, c, cl), nullptr, fixed, f);
         for_face_points(coarse, [&](int i, int j, int k) {
           const std::ptrdiff_t p = coarse.at(i, j, k);

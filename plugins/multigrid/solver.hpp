@@ -62,7 +62,7 @@ struct Slot {
   std::vector<Parity> parity;
   OuterBoundary boundary;
   std::vector<RobinRow> robin;                  // per component; empty for Dirichlet
-  std::vector<std::vector<RayStencil>> rays;    // per level: the Robin rows' stencils
+  int rows = -1;                                // index into FasSolver::row_sets_; -1 for Dirichlet
   int mask = -1;
   std::vector<int> coefficients;
 };
@@ -104,6 +104,13 @@ class FasSolver {
   Settings settings_;
   core::Log log_;
   std::vector<Slot> slots_;
+  // Robin rows per distinct falloff centre, per level: equations about one centre share them, and
+  // the smoother relaxes all their components in one pass over the rows.
+  std::vector<std::vector<RobinRows>> row_sets_;
+  std::vector<std::array<double, 3>> row_centres_;
+  const RobinRows& rows(const Slot& s, int level) const {
+    return row_sets_[static_cast<std::size_t>(s.rows)][static_cast<std::size_t>(level)];
+  }
   std::vector<char> rhs_zero_;  // per level: the right-hand side is identically zero
   std::vector<double> tau_;     // per equation, from the last descent from the finest level
   std::unique_ptr<CoarseSolver> coarse_;

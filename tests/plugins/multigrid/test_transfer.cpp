@@ -102,25 +102,25 @@ TEST_CASE("plugins.multigrid.robin_rows_third_order_for_a_monopole", "[plugins][
   double previous = 0;
   for (int n : {32, 64, 128}) {
     const Level lv = make_level(n, 4.0 / n, true);
-    const std::vector<RayStencil> rows = robin_stencils(lv, x0, false);
-    for (const RayStencil& row : rows) {
+    const RobinRows rows = robin_stencils(lv, x0, false);
+    for (std::size_t r = 0; r < rows.size(); ++r) {
       double sum = 0;
-      for (double w : row.weight) sum += w;
-      REQUIRE(sum == Approx(row.scale).margin(1e-14));
-      REQUIRE(row.scale < 1.0);
+      for (std::size_t e = rows.begin[r]; e < rows.begin[r + 1]; ++e) sum += rows.weight[e];
+      REQUIRE(sum == Approx(rows.scale[r]).margin(1e-14));
+      REQUIRE(rows.scale[r] < 1.0);
     }
     std::vector<double> v = sample(lv, u), res(lv.size, 0.0);
     robin_residual(rows, u_inf, v.data(), nullptr, nullptr, res.data());
     double worst = 0;
-    for (const RayStencil& row : rows) worst = std::max(worst, std::fabs(res[static_cast<std::size_t>(row.point)]));
+    for (std::ptrdiff_t p : rows.point) worst = std::max(worst, std::fabs(res[static_cast<std::size_t>(p)]));
     INFO("n = " << n << ": largest row residual " << worst << ", previous " << previous);
     if (previous > 0) CHECK(previous / worst == Approx(8.0).margin(2.0));
     previous = worst;
-    for (const RayStencil& row : rows) v[static_cast<std::size_t>(row.point)] += 0.1;
+    for (std::ptrdiff_t p : rows.point) v[static_cast<std::size_t>(p)] += 0.1;
     for (int pass = 0; pass < 30; ++pass) robin_relax(rows, u_inf, v.data(), nullptr, nullptr);
     robin_residual(rows, u_inf, v.data(), nullptr, nullptr, res.data());
     double after = 0;
-    for (const RayStencil& row : rows) after = std::max(after, std::fabs(res[static_cast<std::size_t>(row.point)]));
+    for (std::ptrdiff_t p : rows.point) after = std::max(after, std::fabs(res[static_cast<std::size_t>(p)]));
     CHECK(after <= 1e-12);
   }
 }
@@ -141,7 +141,7 @@ TEST_CASE("plugins.multigrid.robin_rows_second_order_for_a_dipole", "[plugins][m
   // The residual at the face point (r_c, 0.5, 0.25) (a grid point at every n used, off every axis).
   auto face_residual = [&](int n, bool two_point) {
     const Level lv = make_level(n, 4.0 / n, false);
-    const std::vector<RayStencil> rows = robin_stencils(lv, x0, two_point);
+    const RobinRows rows = robin_stencils(lv, x0, two_point);
     std::vector<double> v = sample(lv, u), res(lv.size, 0.0);
     robin_residual(rows, u_inf, v.data(), nullptr, nullptr, res.data());
     const int i = n, j = static_cast<int>(std::lround((0.5 - lv.origin[1]) / lv.dx)),
