@@ -80,7 +80,7 @@ ShiftEquation::ShiftEquation(Grid& grid, const Fluid* fluid, const Puncture* pun
   if (settings_.lattice > 0) {
     const double ratio = settings_.lattice / grid.finest().dx, p = std::round(std::log2(ratio));
     if (!(ratio >= 1 - 1e-9) || std::fabs(ratio - std::exp2(p)) > 1e-9 * ratio)
-      throw core::InputError(fmt::format("shift: excision_lattice = {:.9g} must be dx times a power of 2 (dx = {:.9g} "
+      throw core::InputError(fmt::format("shift.excision_lattice = {:.9g}: expected dx times a power of 2 (dx = {:.9g} "
                                          "on the finest level: {:.9g}, {:.9g}, ...)",
                                          settings_.lattice, grid.finest().dx, grid.finest().dx, 2 * grid.finest().dx));
     settings_.lattice = grid.finest().dx * std::exp2(p);  // the exact lattice, free of the parameter's rounding

@@ -223,6 +223,39 @@ TEST_CASE("plugins.shift.excision_cube_has_the_documented_side", "[plugins][shif
   CHECK(cb[static_cast<std::size_t>(coarse.at(5, 4, 0))] == 1);  // x = 0.5, y = 0
 }
 
+TEST_CASE("plugins.shift.excision_lattice_excises_one_cube_at_every_dx", "[plugins][shift]") {
+  // The cube of side 0.5 about x = 0.1 has faces at -0.15 and 0.35, between the grid planes of every
+  // dx = 0.15625 / 2^k on r_c = 2.5 (n = 32, 64, 128): the plain staircase holds a different region
+  // at each dx. Snapped to the lattice of spacing 0.15625 through the grid's corner, the faces are
+  // at -0.15625 and 0.3125 in x and -+0.3125 in y and z at every dx (nearest lattice planes), and the
+  // held points are exactly the grid points of that box.
+  int previous_x = 0;
+  for (int n : {32, 64, 128}) {
+    const double dx = 5.0 / n;
+    const Level lv = make_level(n, dx, true);
+    Cube plain = excision_cube(1.0, {0.1, 0, 0}, dx);
+    Cube c = plain;
+    snap_to_lattice(c, lv, 0.15625);
+    CHECK(c.lo[0] == Approx(-0.15625).margin(1e-11));
+    CHECK(c.hi[0] == Approx(0.3125).margin(1e-11));
+    CHECK(c.lo[1] == Approx(-0.3125).margin(1e-11));
+    CHECK(c.hi[1] == Approx(0.3125).margin(1e-11));
+    CHECK(c.hi[2] == Approx(0.3125).margin(1e-11));
+    std::vector<std::uint8_t> bytes(lv.size, 0);
+    bool nearest = true;
+    const int count = build_mask(lv, c, bytes.data(), nearest);
+    const int per_x = static_cast<int>(std::lround(0.46875 / dx)) + 1, per_y = static_cast<int>(std::lround(0.625 / dx)) + 1;
+    const int per_z = static_cast<int>(std::lround(0.3125 / dx)) + 1;  // z >= 0 stored
+    CHECK(count == per_x * per_y * per_z);
+    // The plain cube's x extent in points is not the snapped one's at every dx.
+    int plain_x = 0;
+    for (int i = 0; i < lv.nx; ++i) plain_x += (lv.x(i) >= plain.lo[0] && lv.x(i) <= plain.hi[0]) ? 1 : 0;
+    if (previous_x > 0) CHECK(per_x - 1 == 2 * (previous_x - 1));
+    previous_x = per_x;
+    if (n == 32) CHECK(plain_x != per_x);
+  }
+}
+
 TEST_CASE("plugins.shift.excision_value_and_outer_boundary", "[plugins][shift]") {
   // beta_0 = -v/sqrt(1 - v^2) (lorentz, the paper's form) or -v (plain) with v = Phat/Mhat signed,
   // and a cube reaching an outer face is reported.
