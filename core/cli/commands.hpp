@@ -17,4 +17,16 @@ int cmd_schedule(const std::string& parfile, const CommonOptions& common);
 int cmd_params(const std::vector<std::string>& plugins, bool yaml, const CommonOptions& common);
 int cmd_plugins(const CommonOptions& common);
 
+struct ValidateOptions {
+  int levels = 3;
+  double threshold = 1.8;
+  std::string output;
+  bool force = false;
+  bool plots = true;
+};
+/// Runs the parameter file at dx, dx/2, ... (n doubled, same cube) with the ire plugin, prints each
+/// equation's residual norms and convergence orders, writes validate.json (and PNG plots); exit 0
+/// when every judged equation converges at least at `threshold`, 1 otherwise.
+int cmd_validate(const std::string& parfile, const CommonOptions& common, const ValidateOptions& options);
+
 }  // namespace bhnsid::cli

@@ -64,6 +64,19 @@ int main(int argc, char** argv) {
   params->add_flag("--yaml", yaml, "print a complete commented parameter file for these plugins instead");
   add_plugin_path(params);
 
+  cli::ValidateOptions vopt;
+  auto* validate = app.add_subcommand(
+      "validate", "run a parameter file at dx, dx/2, dx/4 on the same cube with the independent residual evaluator and "
+                  "report each equation's convergence order (exit 1 below the threshold)");
+  validate->add_option("parfile", parfile, "parameter file (YAML)")->required();
+  validate->add_option("--levels", vopt.levels, "resolutions: dx, dx/2, ... (default 3)");
+  validate->add_option("--threshold", vopt.threshold, "smallest accepted order of the L2 residual at the finest pair (default 1.8)");
+  validate->add_option("--set", common.overrides, "override a parameter: section.key=value (repeatable)")->allow_extra_args(false);
+  validate->add_option("--output", vopt.output, "directory (default runs/<parfile stem>_validate)");
+  validate->add_flag("--force", vopt.force, "replace an existing validate directory");
+  validate->add_flag("!--no-plots", vopt.plots, "skip the PNG plots (python3 with matplotlib)");
+  add_plugin_path(validate);
+
   auto* plugins = app.add_subcommand("plugins", "list the plugins on the plugin path");
   add_plugin_path(plugins);
 
@@ -82,6 +95,7 @@ int main(int argc, char** argv) {
     if (schedule->parsed()) return cli::cmd_schedule(parfile, common);
     if (params->parsed()) return cli::cmd_params(plugin_names, yaml, common);
     if (plugins->parsed()) return cli::cmd_plugins(common);
+    if (validate->parsed()) return cli::cmd_validate(parfile, common, vopt);
   } catch (const core::InputError& e) {
     fmt::print(stderr, "bhnsid: error: {}\n", e.what());
     return core::exit_input;

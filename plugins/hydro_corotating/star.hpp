@@ -37,6 +37,7 @@ class StarFluid final : public Fluid {
   double sigma() const override { return constants.sigma; }
   bool moving() const override { return false; }
   std::array<double, 3> centre() const override { return {robin_centre, 0.0, 0.0}; }
+  double bernoulli_constant() const override { return constants.bernoulli; }
   StarConstants constants;
   double robin_centre = 0;  ///< fixed at the initial xhat_C: the solver reads its boundary once
 };

@@ -43,6 +43,10 @@ class Fluid : public core::Service {
   virtual bool moving() const = 0;
   /// Centre of the 1/r falloff of chi and eta at the outer faces: the density maximum (xhat_C, 0, 0).
   virtual std::array<double, 3> centre() const = 0;
+  /// The Bernoulli constant C_B of the current matter (h alpha / lorentz = C_B inside the star for
+  /// corotation, physics-notes §3), for the IRE's Bernoulli residual; NaN for a fluid that has none
+  /// (the manufactured matter of tests).
+  virtual double bernoulli_constant() const { return std::nan(""); }
 };
 
 /// The black hole (Brandt-Brugmann puncture with a Bowen-York momentum), hatted units, published

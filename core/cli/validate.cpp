@@ -1,0 +1,242 @@
+// bhnsid validate: the configuration at dx, dx/2, dx/4 on the same cube, the independent residual
+// evaluator (plugin ire) on each, and the convergence order of every equation's residual.
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <yaml-cpp/yaml.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "bhnsid/core/atomic_file.hpp"
+#include "bhnsid/core/configuration.hpp"
+#include "bhnsid/core/errors.hpp"
+#include "commands.hpp"
+
+extern char** environ;
+
+namespace bhnsid::cli {
+
+using namespace bhnsid::core;
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+struct Level {
+  int n = 0;
+  double dx = 0;
+  fs::path dir;
+  double seconds = 0;
+  std::map<std::string, double> scalars;
+  std::vector<std::vector<double>> axis;  // rows of ire_axis.tsv (x, then the residual columns)
+  std::vector<std::string> axis_names;
+};
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  if (!in) throw RunFailure(fmt::format("validate: cannot read {}", p.string()));
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs argv with stdout and stderr into `log`; returns the exit status.
+int spawn(const std::vector<std::string>& args, const fs::path& log) {
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) throw RunFailure(fmt::format("validate: cannot start {}: {}", args[0], std::strerror(rc)));
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+void read_axis(Level& lv) {
+  std::istringstream in(read_text(lv.dir / "ire_axis.tsv"));
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    std::istringstream row(line);
+    std::string cell;
+    std::vector<std::string> cells;
+    while (std::getline(row, cell, '\t')) cells.push_back(cell);
+    if (line[0] == '#') {
+      cells[0] = "x";  // "# x"
+      lv.axis_names.assign(cells.begin(), cells.end() - 1);  // the last column is the region
+      continue;
+    }
+    std::vector<double> values;
+    for (std::size_t c = 0; c + 1 < cells.size(); ++c) values.push_back(cells[c] == "nan" ? std::nan("") : std::stod(cells[c]));
+    lv.axis.push_back(values);
+  }
+}
+
+double order(double coarse, double fine) { return coarse > 0 && fine > 0 ? std::log2(coarse / fine) : std::nan(""); }
+
+}  // namespace
+
+int cmd_validate(const std::string& parfile, const CommonOptions& common, const ValidateOptions& opt) {
+  if (opt.levels < 2) throw InputError(fmt::format("validate: --levels {}: expected at least 2", opt.levels));
+  if (!(opt.threshold > 0)) throw InputError(fmt::format("validate: --threshold {}: expected a positive order", opt.threshold));
+  PluginLoader loader(plugin_search_path(common.plugin_dirs));
+  const Configuration config = configure(parfile, common.overrides, loader);  // input errors surface here, once
+  if (!config.params.count("grid"))
+    throw InputError(fmt::format("{}: validate needs the grid plugin (grid.n, grid.dx)", parfile));
+  const int n = static_cast<int>(config.params.at("grid").integer("n"));
+  const double dx = config.params.at("grid").real("dx");
+  int exclude = 2, surface = 2;
+  if (config.params.count("ire")) {
+    exclude = static_cast<int>(config.params.at("ire").integer("exclude_cells"));
+    surface = static_cast<int>(config.params.at("ire").integer("surface_cells"));
+  }
+  const fs::path dir = opt.output.empty() ? fs::path("runs") / (fs::path(parfile).stem().string() + "_validate") : fs::path(opt.output);
+  if (fs::exists(dir)) {
+    if (!opt.force)
+      throw InputError(fmt::format("validate: {} exists; choose another with --output DIR or replace it with --force", dir.string()));
+    if (!fs::exists(dir / "parfile.yaml"))
+      throw InputError(fmt::format("validate: {} does not look like a validate directory (no parfile.yaml); not replacing it", dir.string()));
+    fs::remove_all(dir);
+  }
+  fs::create_directories(dir);
+
+  // The parameter file with the ire plugin added when it is not listed.
+  YAML::Node root = YAML::LoadFile(parfile);
+  bool has_ire = false;
+  for (const auto& p : root["plugins"]) has_ire = has_ire || p.as<std::string>() == "ire";
+  if (!has_ire) root["plugins"].push_back("ire");
+  YAML::Emitter emitter;
+  emitter << root;
+  write_file_atomic(dir / "parfile.yaml", std::string("# ") + parfile + " for bhnsid validate (ire added)\n" + emitter.c_str() + "\n");
+
+  const std::string self = fs::read_symlink("/proc/self/exe").string();
+  std::vector<Level> levels(static_cast<std::size_t>(opt.levels));
+  for (int q = 0; q < opt.levels; ++q) {
+    Level& lv = levels[static_cast<std::size_t>(q)];
+    lv.n = n << q;
+    lv.dx = dx / (1 << q);
+    lv.dir = dir / fmt::format("level_{}", q);
+    // The excluded regions keep their size in length, not in points, as dx shrinks.
+    std::vector<std::string> args{self, "run", (dir / "parfile.yaml").string(), "--output", lv.dir.string(),
+                                  "--set", fmt::format("grid.n={}", lv.n), "--set", fmt::format("grid.dx={:.17g}", lv.dx),
+                                  "--set", fmt::format("ire.exclude_cells={}", exclude << q),
+                                  "--set", fmt::format("ire.surface_cells={}", surface << q)};
+    for (const std::string& o : common.overrides)
+      if (o.rfind("grid.n=", 0) != 0 && o.rfind("grid.dx=", 0) != 0 && o.rfind("ire.exclude_cells=", 0) != 0 &&
+          o.rfind("ire.surface_cells=", 0) != 0)
+        args.insert(args.end(), {"--set", o});
+    for (const std::string& p : common.plugin_dirs) args.insert(args.end(), {"--plugin-path", p});
+    fmt::print("validate: level {} of {}: n = {}, dx = {:.9g} ...\n", q + 1, opt.levels, lv.n, lv.dx);
+    std::fflush(stdout);
+    const auto t0 = std::chrono::steady_clock::now();
+    const int rc = spawn(args, dir / fmt::format("level_{}.out", q));
+    lv.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (rc != 0)
+      throw RunFailure(fmt::format("validate: the run at n = {}, dx = {:.9g} failed (exit {}); see {} and {}", lv.n, lv.dx, rc,
+                                   (dir / fmt::format("level_{}.out", q)).string(), (lv.dir / "log.txt").string()));
+    const json summary = json::parse(read_text(lv.dir / "summary.json"));
+    for (const auto& [key, value] : summary["scalars"].items())
+      if (value.is_number()) lv.scalars[key] = value.get<double>();
+    read_axis(lv);
+    fmt::print("validate:   done in {:.1f} s\n", lv.seconds);
+  }
+
+  // Orders from the norms, per equation; the judgement uses the finest pair's L2 order.
+  const std::vector<std::string> equations{"hamiltonian", "momentum", "lapse", "shift", "bernoulli"};
+  json out;
+  out["parfile"] = parfile;
+  out["threshold"] = opt.threshold;
+  for (const Level& lv : levels)
+    out["levels"].push_back({{"n", lv.n}, {"dx", lv.dx}, {"run_directory", lv.dir.string()}, {"seconds", lv.seconds}});
+  bool passed = true;
+  fmt::print("\n{:<12} {:>10} {:>10} {:>10} {:>8} {:>8} {:>8}  {}\n", "equation", "L2 (dx)", "L2 (dx/2)", "L2 (dx/4)",
+             "order", "order", "max ord", "verdict");
+  for (const std::string& e : equations) {
+    if (!levels[0].scalars.count("ire_" + e + "_l2")) continue;
+    json eq;
+    std::vector<double> l2, mx, sl2;
+    for (const Level& lv : levels) {
+      l2.push_back(lv.scalars.at("ire_" + e + "_l2"));
+      mx.push_back(lv.scalars.at("ire_" + e + "_max"));
+      if (lv.scalars.count("ire_" + e + "_surface_l2")) sl2.push_back(lv.scalars.at("ire_" + e + "_surface_l2"));
+    }
+    std::vector<double> o2, omax, osurf;
+    for (std::size_t q = 0; q + 1 < l2.size(); ++q) {
+      o2.push_back(order(l2[q], l2[q + 1]));
+      omax.push_back(order(mx[q], mx[q + 1]));
+      if (q + 1 < sl2.size()) osurf.push_back(order(sl2[q], sl2[q + 1]));
+    }
+    std::string verdict;
+    bool exact = true;
+    for (double v : l2) exact = exact && v <= 1e-12;
+    if (exact) {
+      verdict = "exact (zero at every level)";
+    } else if (e == "bernoulli") {
+      verdict = "reported (the modelled lapse: not expected to converge, physics-notes §7)";
+    } else if (o2.back() >= opt.threshold) {
+      verdict = "pass";
+    } else {
+      verdict = fmt::format("FAIL (order {:.2f} < {:.2f})", o2.back(), opt.threshold);
+      passed = false;
+    }
+    eq["l2"] = l2;
+    eq["max"] = mx;
+    eq["order_l2"] = o2;
+    eq["order_max"] = omax;
+    if (!sl2.empty()) {
+      eq["surface_l2"] = sl2;
+      eq["surface_order_l2"] = osurf;
+    }
+    eq["verdict"] = verdict;
+    out["equations"][e] = eq;
+    std::string l2s;
+    for (std::size_t q = 0; q < 3; ++q) l2s += q < l2.size() ? fmt::format(" {:>10.3e}", l2[q]) : fmt::format(" {:>10}", "");
+    fmt::print("{:<12}{} {:>8.2f} {:>8.2f} {:>8.2f}  {}\n", e, l2s, o2.front(), o2.back(), omax.back(), verdict);
+    if (!sl2.empty() && !exact)
+      fmt::print("{:<12} surface band: L2 {:.3e} -> {:.3e}, order {:.2f}\n", "", sl2.front(), sl2.back(), osurf.back());
+  }
+  // Pointwise: the residuals at the coarsest run's axis points, times 4^q at level q.
+  const Level& coarse = levels[0];
+  json axis;
+  for (std::size_t c = 0; c < coarse.axis_names.size(); ++c) {
+    std::vector<std::vector<double>> series;
+    for (std::size_t q = 0; q < levels.size(); ++q) {
+      const std::size_t stride = std::size_t{1} << q;
+      std::vector<double> values;
+      for (std::size_t i = 0; i < coarse.axis.size(); ++i) {
+        const std::vector<double>& row = levels[q].axis[i * stride];
+        values.push_back(c == 0 ? row[c] : row[c] * std::pow(4.0, static_cast<double>(q)));
+      }
+      series.push_back(values);
+    }
+    axis[coarse.axis_names[c]] = c == 0 ? json(series[0]) : json(series);
+  }
+  out["axis_rescaled"] = axis;
+  out["passed"] = passed;
+  write_file_atomic(dir / "validate.json", out.dump(1) + "\n");
+  fmt::print("\nvalidate: {} ({} levels, threshold {:.2f}); validate.json in {}\n", passed ? "PASSED" : "FAILED",
+             opt.levels, opt.threshold, dir.string());
+  if (opt.plots) {
+    const std::string cmd = fmt::format("python3 '{}' '{}' '{}'", BHNSID_PLOT_SCRIPT, (dir / "validate.json").string(), dir.string());
+    if (std::system(cmd.c_str()) != 0)
+      fmt::print(stderr, "validate: warning: the plots were not made ({}); the table and validate.json are complete\n", cmd);
+  }
+  return passed ? exit_ok : exit_run_failed;
+}
+
+}  // namespace bhnsid::cli

@@ -1,0 +1,461 @@
+#include "evaluator.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "bhnsid/interfaces/spacetime.hpp"
+#include "box.hpp"
+
+namespace bhnsid::ire {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+int zcount(int a) { return a == 2 ? 1 : 0; }
+
+Field make(const Box& b, int z_indices) { return Field{std::vector<double>(b.size(), 0.0), zparity(z_indices)}; }
+
+// One grid component copied onto the box.
+Field copy(const Grid& grid, const Box& b, const char* name, int comp, int z_indices) {
+  Field f = make(b, z_indices);
+  if (!grid.has_field(name)) return f;
+  const Level& lv = grid.finest();
+  const double* src = grid.data(grid.field_id(name), comp, 0);
+  for (int k = 0; k < b.nz; ++k)
+    for (int j = 0; j < b.ny; ++j)
+      for (int i = 0; i < b.nx; ++i) f.v[b.at(i, j, k)] = src[lv.at(i, j, k)];
+  return f;
+}
+
+// The inverse of a symmetric 3x3 matrix given as xx, xy, xz, yy, yz, zz.
+std::array<double, 6> inverse(const std::array<double, 6>& g) {
+  const double c0 = g[3] * g[5] - g[4] * g[4], c1 = g[2] * g[4] - g[1] * g[5], c2 = g[1] * g[4] - g[2] * g[3];
+  const double det = g[0] * c0 + g[1] * c1 + g[2] * c2;
+  return {c0 / det, c1 / det, c2 / det, (g[0] * g[5] - g[2] * g[2]) / det, (g[1] * g[2] - g[0] * g[4]) / det,
+          (g[0] * g[3] - g[1] * g[1]) / det};
+}
+
+// Calls fn(i, j, k) for every point of the box whose stencils reach `margin` points, planes in parallel.
+template <class Fn>
+void for_points(const Box& b, int margin, Fn&& fn) {
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < b.nz; ++k)
+    for (int j = 0; j < b.ny; ++j)
+      for (int i = 0; i < b.nx; ++i)
+        if (b.inside(i, j, k, margin)) fn(i, j, k);
+}
+
+struct Geometry {
+  Field alpha, rho_e, trace_s, lorentz, enthalpy, rho0;
+  std::array<Field, 3> beta_up, beta_down, j_up, dalpha;
+  std::array<Field, 6> gamma, k_down, k_up, sigma;
+  std::array<std::array<Field, 6>, 3> christoffel;  // [k][pair(i, j)] = Gamma^k_ij
+  Field k_trace;
+};
+
+std::array<double, 6> metric_at(const Geometry& g, const Box& b, std::size_t p) {
+  (void)b;
+  return {g.gamma[0].v[p], g.gamma[1].v[p], g.gamma[2].v[p], g.gamma[3].v[p], g.gamma[4].v[p], g.gamma[5].v[p]};
+}
+
+// The point values: phi, alpha, beta, gamma = phi^4 delta, the matter (hatted units).
+void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, Geometry& g, Field& phi) {
+  const Field chi = copy(grid, b, fields::chi, 0, 0), eta = copy(grid, b, fields::eta, 0, 0);
+  for (int a = 0; a < 3; ++a) g.beta_up[static_cast<std::size_t>(a)] = copy(grid, b, fields::shift, a, zcount(a));
+  phi = make(b, 0);
+  g.alpha = make(b, 0);
+  for (int p = 0; p < 6; ++p) g.gamma[static_cast<std::size_t>(p)] = make(b, (p == 2 || p == 4) ? 1 : 0);
+  g.rho_e = make(b, 0);
+  g.trace_s = make(b, 0);
+  g.lorentz = make(b, 0);
+  g.rho0 = make(b, 0);
+  g.enthalpy = make(b, 0);
+  for (int a = 0; a < 3; ++a) {
+    g.j_up[static_cast<std::size_t>(a)] = make(b, zcount(a));
+    g.beta_down[static_cast<std::size_t>(a)] = make(b, zcount(a));
+  }
+  Field rho0, press, enthalpy;
+  std::array<Field, 3> velocity;
+  if (in.fluid) {
+    rho0 = copy(grid, b, fields::rho0, 0, 0);
+    press = copy(grid, b, fields::press, 0, 0);
+    enthalpy = copy(grid, b, fields::enthalpy, 0, 0);
+    for (int a = 0; a < 3; ++a)
+      velocity[static_cast<std::size_t>(a)] =
+          in.moving ? copy(grid, b, fields::fluid_velocity, a, zcount(a)) : make(b, zcount(a));
+  }
+  for_points(b, 0, [&](int i, int j, int k) {
+    const std::size_t p = b.at(i, j, k);
+    double ph = chi.v[p];
+    if (in.puncture) {
+      const double dx = b.x0 + b.dx * i - in.position[0], dy = b.y0 + b.dx * j - in.position[1],
+                   dz = b.z0 + b.dx * k - in.position[2];
+      ph += in.bare_mass / (2.0 * std::sqrt(dx * dx + dy * dy + dz * dz));
+    }
+    phi.v[p] = ph;
+    const double al = eta.v[p] / ph, psi4 = ph * ph * ph * ph;
+    g.alpha.v[p] = al;
+    g.gamma[0].v[p] = g.gamma[3].v[p] = g.gamma[5].v[p] = psi4;
+    for (int a = 0; a < 3; ++a) g.beta_down[static_cast<std::size_t>(a)].v[p] = psi4 * g.beta_up[static_cast<std::size_t>(a)].v[p];
+    g.lorentz.v[p] = 1;
+    if (!in.fluid) return;
+    // Eulerian 3-velocity v^i = (beta^i + V^i)/alpha, W = 1/sqrt(1 - gamma_ij v^i v^j).
+    double v[3], v2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      v[a] = (g.beta_up[static_cast<std::size_t>(a)].v[p] + velocity[static_cast<std::size_t>(a)].v[p]) / al;
+      v2 += psi4 * v[a] * v[a];
+    }
+    if (!in.moving) v2 = 0, v[0] = v[1] = v[2] = 0;
+    const double w2 = 1.0 / (1.0 - v2), rh = rho0.v[p] * enthalpy.v[p];
+    g.lorentz.v[p] = std::sqrt(w2);
+    g.rho0.v[p] = rho0.v[p];
+    g.enthalpy.v[p] = enthalpy.v[p];
+    g.rho_e.v[p] = rh * w2 - press.v[p];
+    g.trace_s.v[p] = rh * w2 * v2 + 3.0 * press.v[p];
+    for (int a = 0; a < 3; ++a) g.j_up[static_cast<std::size_t>(a)].v[p] = rh * w2 * v[a];
+  });
+}
+
+// K_ij = phi^-2 Ahat_ij, Ahat = Bowen-York + Zhat, Zhat^ij = chi^7/(2 eta) (LW)^ij with the box's
+// own D0 of W (margin 1).
+void fill_extrinsic(const Grid& grid, const Box& b, const Inputs& in, const Field& phi, Geometry& g) {
+  const Field chi = copy(grid, b, fields::chi, 0, 0), eta = copy(grid, b, fields::eta, 0, 0);
+  std::array<Field, 3> w;
+  for (int a = 0; a < 3; ++a) w[static_cast<std::size_t>(a)] = copy(grid, b, fields::wvec, a, zcount(a));
+  for (int a = 0; a < 3; ++a)
+    for (int c = a; c < 3; ++c) g.k_down[static_cast<std::size_t>(pair(a, c))] = make(b, zcount(a) + zcount(c));
+  const bool has_w = grid.has_field(fields::wvec);
+  for_points(b, 1, [&](int i, int j, int k) {
+    const std::size_t p = b.at(i, j, k);
+    double dw[3][3] = {};  // dw[a][c] = d_a W^c
+    if (has_w)
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) dw[a][c] = d0(b, w[static_cast<std::size_t>(c)], a, i, j, k);
+    const double div = dw[0][0] + dw[1][1] + dw[2][2];
+    const double factor = std::pow(chi.v[p], 7) / (2.0 * eta.v[p]);
+    double n[3] = {0, 0, 0}, r = 1, pn = 0;
+    if (in.puncture) {
+      const double d[3] = {b.x0 + b.dx * i - in.position[0], b.y0 + b.dx * j - in.position[1],
+                           b.z0 + b.dx * k - in.position[2]};
+      r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      for (int a = 0; a < 3; ++a) n[a] = d[a] / r, pn += in.momentum[static_cast<std::size_t>(a)] * n[a];
+    }
+    const double inv_phi2 = 1.0 / (phi.v[p] * phi.v[p]);
+    for (int a = 0; a < 3; ++a)
+      for (int c = a; c < 3; ++c) {
+        const double delta = a == c ? 1.0 : 0.0;
+        double ahat = factor * (dw[a][c] + dw[c][a] - (2.0 / 3.0) * delta * div);
+        if (in.puncture)
+          ahat += 1.5 / (r * r) *
+                  (in.momentum[static_cast<std::size_t>(a)] * n[c] + in.momentum[static_cast<std::size_t>(c)] * n[a] -
+                   (delta - n[a] * n[c]) * pn);
+        // Ahat_ij = Ahat^ij (the conformal metric is flat); K_ij = phi^-2 Ahat_ij.
+        g.k_down[static_cast<std::size_t>(pair(a, c))].v[p] = inv_phi2 * ahat;
+      }
+  });
+}
+
+// Gamma^k_ij, K^ij, K, d alpha and Sigma_ij (margin 1).
+void fill_connection(const Box& b, Geometry& g) {
+  for (int c = 0; c < 3; ++c)
+    for (int a = 0; a < 3; ++a)
+      for (int d = a; d < 3; ++d)
+        g.christoffel[static_cast<std::size_t>(c)][static_cast<std::size_t>(pair(a, d))] =
+            make(b, zcount(c) + zcount(a) + zcount(d));
+  for (int a = 0; a < 3; ++a)
+    for (int c = a; c < 3; ++c) {
+      g.k_up[static_cast<std::size_t>(pair(a, c))] = make(b, zcount(a) + zcount(c));
+      g.sigma[static_cast<std::size_t>(pair(a, c))] = make(b, zcount(a) + zcount(c));
+    }
+  for (int a = 0; a < 3; ++a) g.dalpha[static_cast<std::size_t>(a)] = make(b, zcount(a));
+  g.k_trace = make(b, 0);
+  for_points(b, 1, [&](int i, int j, int k) {
+    const std::size_t p = b.at(i, j, k);
+    const std::array<double, 6> gl = metric_at(g, b, p), gu = inverse(gl);
+    double dg[3][6];  // dg[l][pair] = d_l gamma_pair
+    for (int l = 0; l < 3; ++l)
+      for (int q = 0; q < 6; ++q) dg[l][q] = d0(b, g.gamma[static_cast<std::size_t>(q)], l, i, j, k);
+    double gamma[3][3][3];  // Gamma^c_ad
+    for (int c = 0; c < 3; ++c)
+      for (int a = 0; a < 3; ++a)
+        for (int d = 0; d < 3; ++d) {
+          double s = 0;
+          for (int l = 0; l < 3; ++l) s += gu[static_cast<std::size_t>(pair(c, l))] * (dg[a][pair(d, l)] + dg[d][pair(a, l)] - dg[l][pair(a, d)]);
+          gamma[c][a][d] = 0.5 * s;
+        }
+    for (int c = 0; c < 3; ++c)
+      for (int a = 0; a < 3; ++a)
+        for (int d = a; d < 3; ++d) g.christoffel[static_cast<std::size_t>(c)][static_cast<std::size_t>(pair(a, d))].v[p] = gamma[c][a][d];
+    double kd[3][3], ku[3][3], trace = 0;
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) kd[a][c] = g.k_down[static_cast<std::size_t>(pair(a, c))].v[p];
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) {
+        double s = 0;
+        for (int e = 0; e < 3; ++e)
+          for (int f = 0; f < 3; ++f) s += gu[static_cast<std::size_t>(pair(a, e))] * gu[static_cast<std::size_t>(pair(c, f))] * kd[e][f];
+        ku[a][c] = s;
+        trace += gu[static_cast<std::size_t>(pair(a, c))] * kd[a][c];
+      }
+    for (int a = 0; a < 3; ++a)
+      for (int c = a; c < 3; ++c) g.k_up[static_cast<std::size_t>(pair(a, c))].v[p] = ku[a][c];
+    g.k_trace.v[p] = trace;
+    for (int a = 0; a < 3; ++a) g.dalpha[static_cast<std::size_t>(a)].v[p] = d0(b, g.alpha, a, i, j, k);
+    // dtg_ij = -2 alpha K_ij + D_i beta_j + D_j beta_i; Sigma = its trace-free part.
+    double db[3][3];  // D_a beta_c
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) {
+        double s = d0(b, g.beta_down[static_cast<std::size_t>(c)], a, i, j, k);
+        for (int e = 0; e < 3; ++e) s -= gamma[e][a][c] * g.beta_down[static_cast<std::size_t>(e)].v[p];
+        db[a][c] = s;
+      }
+    const double al = g.alpha.v[p];
+    double dtg[3][3], tr = 0;
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) dtg[a][c] = -2.0 * al * kd[a][c] + db[a][c] + db[c][a];
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) tr += gu[static_cast<std::size_t>(pair(a, c))] * dtg[a][c];
+    for (int a = 0; a < 3; ++a)
+      for (int c = a; c < 3; ++c)
+        g.sigma[static_cast<std::size_t>(pair(a, c))].v[p] = dtg[a][c] - gl[static_cast<std::size_t>(pair(a, c))] * tr / 3.0;
+  });
+}
+
+struct PointResiduals {
+  double hamiltonian, momentum[3], lapse, shift[3];
+};
+
+// The residuals at a point with margin 2.
+PointResiduals residuals_at(const Box& b, const Geometry& g, double sigma2, int i, int j, int k) {
+  const std::size_t p = b.at(i, j, k);
+  const std::array<double, 6> gl = metric_at(g, b, p), gu = inverse(gl);
+  auto G = [&](int c, int a, int d) { return g.christoffel[static_cast<std::size_t>(c)][static_cast<std::size_t>(pair(a, d))].v[p]; };
+  auto dG = [&](int l, int c, int a, int d) {
+    return d0(b, g.christoffel[static_cast<std::size_t>(c)][static_cast<std::size_t>(pair(a, d))], l, i, j, k);
+  };
+  auto up = [&](int a, int c) { return gu[static_cast<std::size_t>(pair(a, c))]; };
+  // R_ad = d_c Gamma^c_ad - d_d Gamma^c_ac + Gamma^c_ce Gamma^e_ad - Gamma^c_de Gamma^e_ac
+  double ricci = 0;
+  for (int a = 0; a < 3; ++a)
+    for (int d = 0; d < 3; ++d) {
+      double r = 0;
+      for (int c = 0; c < 3; ++c) {
+        r += dG(c, c, a, d) - dG(d, c, a, c);
+        for (int e = 0; e < 3; ++e) r += G(c, c, e) * G(e, a, d) - G(c, d, e) * G(e, a, c);
+      }
+      ricci += up(a, d) * r;
+    }
+  double kk = 0;
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c)
+      kk += g.k_down[static_cast<std::size_t>(pair(a, c))].v[p] * g.k_up[static_cast<std::size_t>(pair(a, c))].v[p];
+  const double trace = g.k_trace.v[p], rho_e = g.rho_e.v[p];
+  PointResiduals out{};
+  out.hamiltonian = ricci + trace * trace - kk - 16.0 * pi * sigma2 * rho_e;
+  double dtrace[3];
+  for (int a = 0; a < 3; ++a) dtrace[a] = d0(b, g.k_trace, a, i, j, k);
+  for (int a = 0; a < 3; ++a) {
+    // D_c K^ac - D^a K - 8 pi sigma^2 j^a
+    double s = 0;
+    for (int c = 0; c < 3; ++c) {
+      s += d0(b, g.k_up[static_cast<std::size_t>(pair(a, c))], c, i, j, k);
+      for (int e = 0; e < 3; ++e)
+        s += G(a, c, e) * g.k_up[static_cast<std::size_t>(pair(e, c))].v[p] +
+             G(c, c, e) * g.k_up[static_cast<std::size_t>(pair(a, e))].v[p];
+      s -= up(a, c) * dtrace[c];
+    }
+    out.momentum[a] = s - 8.0 * pi * sigma2 * g.j_up[static_cast<std::size_t>(a)].v[p];
+  }
+  // d_t K = -D^2 alpha + alpha (R + K^2 + 4 pi sigma^2 (S - 3 rho_E)) + beta^k d_k K, with the second
+  // derivatives of alpha as D0 of D0 alpha (symmetrised).
+  double lap_alpha = 0;
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c) {
+      double dd = 0.5 * (d0(b, g.dalpha[static_cast<std::size_t>(c)], a, i, j, k) + d0(b, g.dalpha[static_cast<std::size_t>(a)], c, i, j, k));
+      for (int e = 0; e < 3; ++e) dd -= G(e, a, c) * g.dalpha[static_cast<std::size_t>(e)].v[p];
+      lap_alpha += up(a, c) * dd;
+    }
+  double advect = 0;
+  for (int a = 0; a < 3; ++a) advect += g.beta_up[static_cast<std::size_t>(a)].v[p] * dtrace[a];
+  const double al = g.alpha.v[p];
+  out.lapse = -lap_alpha + al * (ricci + trace * trace + 4.0 * pi * sigma2 * (g.trace_s.v[p] - 3.0 * rho_e)) + advect;
+  // D^c Sigma_ac = gamma^cd (d_d Sigma_ac - Gamma^e_da Sigma_ec - Gamma^e_dc Sigma_ae)
+  auto S = [&](int a, int c) { return g.sigma[static_cast<std::size_t>(pair(a, c))].v[p]; };
+  for (int a = 0; a < 3; ++a) {
+    double s = 0;
+    for (int c = 0; c < 3; ++c)
+      for (int d = 0; d < 3; ++d) {
+        double t = d0(b, g.sigma[static_cast<std::size_t>(pair(a, c))], d, i, j, k);
+        for (int e = 0; e < 3; ++e) t -= G(e, d, a) * S(e, c) + G(e, d, c) * S(a, e);
+        s += up(c, d) * t;
+      }
+    out.shift[a] = s;
+  }
+  return out;
+}
+
+// Points near the puncture: the excision mask (or the cube of the rule max(M/2, 3 dx)) widened by
+// `cells`.
+std::vector<std::uint8_t> puncture_region(const Grid& grid, const Box& b, const Inputs& in) {
+  std::vector<std::uint8_t> near(b.size(), 0);
+  if (!in.puncture) return near;
+  std::vector<std::uint8_t> core(b.size(), 0);
+  const Level& lv = grid.finest();
+  int mask = -1;
+  if (grid.has_field(fields::shift)) {
+    try {
+      mask = grid.mask_id(fields::excision_mask);
+    } catch (...) {
+      mask = -1;
+    }
+  }
+  const double half = 0.5 * std::max(0.5 * in.bare_mass, 3.0 * b.dx) + 1e-12 * b.dx;
+  for (int k = 0; k < b.nz; ++k)
+    for (int j = 0; j < b.ny; ++j)
+      for (int i = 0; i < b.nx; ++i) {
+        bool in_core;
+        if (mask >= 0) {
+          in_core = grid.mask(mask, 0)[lv.at(i, j, k)] != 0;
+        } else {
+          const double d = std::max({std::fabs(b.x0 + b.dx * i - in.position[0]), std::fabs(b.y0 + b.dx * j - in.position[1]),
+                                     std::fabs(b.z0 + b.dx * k - in.position[2])});
+          in_core = d <= half;
+        }
+        core[b.at(i, j, k)] = in_core;
+      }
+  const int w = in.exclude_cells;
+  for_points(b, 0, [&](int i, int j, int k) {
+    for (int c = -w; c <= w; ++c)
+      for (int bb = -w; bb <= w; ++bb)
+        for (int a = -w; a <= w; ++a) {
+          const int ii = i + a, jj = j + bb, kk = std::abs(k + c);
+          if (ii < 0 || jj < 0 || ii >= b.nx || jj >= b.ny || kk >= b.nz || (!b.mirror && k + c < 0)) continue;
+          if (core[b.at(ii, jj, kk)]) {
+            near[b.at(i, j, k)] = 1;
+            return;
+          }
+        }
+  });
+  return near;
+}
+
+// Points within `cells` of the star's surface (a rho0 > 0 point next to a rho0 = 0 one).
+std::vector<std::uint8_t> surface_band(const Box& b, const Geometry& g, int cells) {
+  std::vector<std::uint8_t> edge(b.size(), 0), band(b.size(), 0);
+  auto matter = [&](int i, int j, int k) { return get(b, g.rho0, i, j, k) > 0; };
+  for_points(b, 1, [&](int i, int j, int k) {
+    const bool m = matter(i, j, k);
+    if (m != matter(i + 1, j, k) || m != matter(i - 1, j, k) || m != matter(i, j + 1, k) || m != matter(i, j - 1, k) ||
+        m != matter(i, j, k + 1) || m != matter(i, j, k - 1))
+      edge[b.at(i, j, k)] = 1;
+  });
+  for_points(b, 0, [&](int i, int j, int k) {
+    for (int c = -cells; c <= cells; ++c)
+      for (int bb = -cells; bb <= cells; ++bb)
+        for (int a = -cells; a <= cells; ++a) {
+          const int ii = i + a, jj = j + bb, kk = std::abs(k + c);
+          if (ii < 0 || jj < 0 || ii >= b.nx || jj >= b.ny || kk >= b.nz || (!b.mirror && k + c < 0)) continue;
+          if (edge[b.at(ii, jj, kk)]) {
+            band[b.at(i, j, k)] = 1;
+            return;
+          }
+        }
+  });
+  return band;
+}
+
+struct Accumulator {
+  double sum = 0, max = 0;
+  long points = 0;
+  void add(const double* r, int n) {
+    double s = 0;
+    for (int c = 0; c < n; ++c) s += r[c] * r[c], max = std::max(max, std::fabs(r[c]));
+    sum += s;
+    ++points;
+  }
+  Norms norms() const { return Norms{points ? std::sqrt(sum / points) : 0.0, max, points}; }
+};
+
+std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.10e}", v) : "nan"; }
+
+}  // namespace
+
+Result evaluate(const Grid& grid, const Inputs& in) {
+  const Level& lv = grid.finest();
+  const Box b(lv);
+  Geometry g;
+  Field phi;
+  fill_point_fields(grid, b, in, g, phi);
+  fill_extrinsic(grid, b, in, phi, g);
+  fill_connection(b, g);
+  const std::vector<std::uint8_t> near = puncture_region(grid, b, in);
+  const std::vector<std::uint8_t> band = in.fluid ? surface_band(b, g, in.surface_cells) : std::vector<std::uint8_t>(b.size(), 0);
+  const double sigma2 = in.sigma * in.sigma;
+  const bool bernoulli = in.fluid && std::isfinite(in.bernoulli);
+
+  Result out;
+  out.equations = {"hamiltonian", "momentum", "lapse", "shift"};
+  if (bernoulli) out.equations.push_back("bernoulli");
+  const std::size_t ne = out.equations.size();
+  // Per equation and region (0 away, 1 surface, 2 puncture), accumulated per plane then summed.
+  std::vector<std::array<Accumulator, 3>> total(ne);
+  const int jaxis = static_cast<int>(std::lround(-b.y0 / b.dx));
+  const int kaxis = static_cast<int>(std::lround(-b.z0 / b.dx));
+  std::vector<std::string> axis_rows(static_cast<std::size_t>(b.nx));
+#pragma omp parallel
+  {
+    std::vector<std::array<Accumulator, 3>> local(ne);
+#pragma omp for schedule(static)
+    for (int k = 0; k < b.nz; ++k)
+      for (int j = 0; j < b.ny; ++j)
+        for (int i = 0; i < b.nx; ++i) {
+          const bool on_axis = j == jaxis && k == kaxis;
+          if (!b.inside(i, j, k, 2)) {
+            if (on_axis) axis_rows[static_cast<std::size_t>(i)] = fmt::format("{:.10g}\tnan\tnan\tnan\tnan\tnan\tnan\tnan\tnan\tnan\t-\n", b.x0 + b.dx * i);
+            continue;
+          }
+          const std::size_t p = b.at(i, j, k);
+          const PointResiduals r = residuals_at(b, g, sigma2, i, j, k);
+          const bool matter = g.rho0.v[p] > 0;
+          const double bern = bernoulli && matter ? g.enthalpy.v[p] * g.alpha.v[p] / g.lorentz.v[p] - in.bernoulli : nan;
+          const int region = near[p] ? 2 : band[p] ? 1 : 0;
+          local[0][static_cast<std::size_t>(region)].add(&r.hamiltonian, 1);
+          local[1][static_cast<std::size_t>(region)].add(r.momentum, 3);
+          local[2][static_cast<std::size_t>(region)].add(&r.lapse, 1);
+          local[3][static_cast<std::size_t>(region)].add(r.shift, 3);
+          if (bernoulli && matter) local[4][static_cast<std::size_t>(region)].add(&bern, 1);
+          if (on_axis)
+            axis_rows[static_cast<std::size_t>(i)] =
+                fmt::format("{:.10g}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\n", b.x0 + b.dx * i, number(r.hamiltonian),
+                            number(r.momentum[0]), number(r.momentum[1]), number(r.momentum[2]), number(r.lapse),
+                            number(r.shift[0]), number(r.shift[1]), number(r.shift[2]), number(bern),
+                            region == 2 ? "puncture" : region == 1 ? "surface" : "away");
+        }
+#pragma omp critical
+    for (std::size_t e = 0; e < ne; ++e)
+      for (int q = 0; q < 3; ++q) {
+        Accumulator& t = total[e][static_cast<std::size_t>(q)];
+        const Accumulator& l = local[e][static_cast<std::size_t>(q)];
+        t.sum += l.sum;
+        t.max = std::max(t.max, l.max);
+        t.points += l.points;
+      }
+  }
+  for (std::size_t e = 0; e < ne; ++e) {
+    out.away[out.equations[e]] = total[e][0].norms();
+    out.surface[out.equations[e]] = total[e][1].norms();
+    out.puncture[out.equations[e]] = total[e][2].norms();
+  }
+  out.axis_table =
+      "# x\thamiltonian\tmomentum_x\tmomentum_y\tmomentum_z\tlapse\tshift_x\tshift_y\tshift_z\tbernoulli\tregion\n";
+  for (const std::string& row : axis_rows) out.axis_table += row;
+  return out;
+}
+
+}  // namespace bhnsid::ire

@@ -1,0 +1,44 @@
+#pragma once
+// The independent residual evaluator (physics-notes §7): from a solution (chi, eta, beta, W, the
+// puncture, the fluid) it builds the physical fields gamma_ij, K_ij, alpha, beta^i and the matter in
+// hatted coordinates and evaluates the covariant equations with generic Christoffel symbols, Ricci
+// tensor and covariant derivatives, by centred differences of its own: first derivatives D0, second
+// derivatives D0(D0 u) (the solver uses D+D-). It shares no code with the equation plugins.
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "bhnsid/interfaces/grid.hpp"
+
+namespace bhnsid::ire {
+
+struct Inputs {
+  double sigma = 1;
+  bool fluid = false;       ///< rho0, press, enthalpy fields present and meaningful
+  bool moving = false;      ///< fluid_velocity non-zero
+  double bernoulli = 0;     ///< C_B; NaN when the fluid has none (no Bernoulli residual)
+  bool puncture = false;
+  double bare_mass = 0;
+  std::array<double, 3> position{}, momentum{};
+  int exclude_cells = 2;    ///< the puncture's region: excision cube (or its rule) widened by this
+  int surface_cells = 2;    ///< the star's surface band: points this close to a rho0 > 0 / = 0 change
+};
+
+struct Norms {
+  double l2 = 0, max = 0;
+  long points = 0;
+};
+
+/// Residual norms per equation and region, and the x-axis table.
+struct Result {
+  std::vector<std::string> equations;           ///< hamiltonian, momentum, lapse, shift, bernoulli
+  std::map<std::string, Norms> away, surface, puncture;
+  std::string axis_table;                       ///< ire_axis.tsv
+};
+
+/// The residuals on the finest level of `grid`: at every point whose stencils (two points each
+/// way) fit inside the cube; below z = 0 by symmetry.
+Result evaluate(const Grid& grid, const Inputs& in);
+
+}  // namespace bhnsid::ire

@@ -1,0 +1,91 @@
+// The ire plugin: the independent residual evaluator of physics-notes §7, run on the solution in
+// ANALYSIS; residual norms to summary.json and the x axis to ire_axis.tsv.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "bhnsid/core/context.hpp"
+#include "bhnsid/core/plugin.hpp"
+#include "bhnsid/interfaces/spacetime.hpp"
+#include "evaluator.hpp"
+
+namespace bhnsid::ire {
+namespace {
+
+using core::Bin;
+using core::Context;
+
+struct State {
+  Result result;
+  bool evaluated = false;
+};
+
+void declare(core::PluginBuilder& b) {
+  auto state = std::make_shared<State>();
+  b.require("grid");
+  b.implements("ire");
+  b.integer("exclude_cells")
+      .doc("the puncture's region left out of the norms: the excision cube (or, without a shift, the cube of side "
+           "max(Mhat_BH/2, 3 dx)) widened by this many points")
+      .default_value(std::int64_t{2})
+      .at_least(0);
+  b.integer("surface_cells")
+      .doc("the star's surface band, normed apart: points at most this many points (max norm) from a point whose "
+           "rho0 > 0 differs from a neighbour's")
+      .default_value(std::int64_t{2})
+      .at_least(0);
+
+  b.schedule(Bin::analysis, "residuals", [state](Context& ctx) {
+     const auto& grid = ctx.services().get<Grid>("grid");
+     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* puncture = ctx.services().find<Puncture>("puncture");
+     Inputs in;
+     in.sigma = fluid ? fluid->sigma() : 1.0;
+     in.fluid = fluid != nullptr && grid.has_field(fields::rho0);
+     in.moving = fluid && fluid->moving();
+     in.bernoulli = fluid ? fluid->bernoulli_constant() : std::nan("");
+     if (puncture) {
+       in.puncture = true;
+       in.bare_mass = puncture->bare_mass();
+       in.position = puncture->position();
+       in.momentum = puncture->momentum();
+     }
+     in.exclude_cells = static_cast<int>(ctx.params().integer("exclude_cells"));
+     in.surface_cells = static_cast<int>(ctx.params().integer("surface_cells"));
+     state->result = evaluate(grid, in);
+     state->evaluated = true;
+     const Result& r = state->result;
+     for (const std::string& e : r.equations) {
+       const Norms& away = r.away.at(e);
+       ctx.set_scalar("ire_" + e + "_l2", away.l2);
+       ctx.set_scalar("ire_" + e + "_max", away.max);
+       ctx.set_scalar("ire_" + e + "_points", static_cast<double>(away.points));
+       if (in.fluid) {
+         ctx.set_scalar("ire_" + e + "_surface_l2", r.surface.at(e).l2);
+         ctx.set_scalar("ire_" + e + "_surface_max", r.surface.at(e).max);
+       }
+       if (in.puncture) ctx.set_scalar("ire_" + e + "_puncture_max", r.puncture.at(e).max);
+       ctx.log().info("IRE {:<11s} away: L2 {:.3e}, max {:.3e} ({} points){}{}", e, away.l2, away.max, away.points,
+                      in.fluid ? fmt::format("; surface band: L2 {:.3e}, max {:.3e}", r.surface.at(e).l2, r.surface.at(e).max) : "",
+                      in.puncture ? fmt::format("; near the puncture: max {:.3e}", r.puncture.at(e).max) : "");
+     }
+   }).doc("the residuals of the Hamiltonian and momentum constraints, maximal slicing (d_t K), minimal distortion "
+          "(D^j Sigma_ij) and, in the star, Bernoulli (h alpha/lorentz - C_B), from generic finite-difference geometry; "
+          "L2 (rms) and max norms away from the puncture and the star's surface, and in those regions apart");
+
+  b.schedule(Bin::output, "axis", [state](Context& ctx) {
+     if (state->evaluated) ctx.write_output("ire_axis.tsv", state->result.axis_table);
+   }).doc("ire_axis.tsv: the residuals along the x axis (nan where the stencils do not fit), with each point's region");
+}
+
+}  // namespace
+}  // namespace bhnsid::ire
+
+extern "C" BHNSID_EXPORT const BhnsidPluginInfo* bhnsid_plugin_info() {
+  static const BhnsidPluginInfo info{BHNSID_ABI_VERSION, "ire", "0.1",
+                                     "independent residual evaluator: the covariant equations evaluated on the solution",
+                                     &bhnsid::ire::declare};
+  return &info;
+}

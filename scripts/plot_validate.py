@@ -1,0 +1,68 @@
+#!/usr/bin/env python3
+"""PNG plots of a `bhnsid validate` directory, like the IRE figures of the paper: each equation's
+residual along the x axis at dx, dx/2, dx/4, multiplied by 1, 4, 16, so that second-order
+convergence shows as curves lying on top of each other.
+Usage: scripts/plot_validate.py DIR/validate.json DIR   (called by bhnsid validate)
+"""
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+GROUPS = {
+    "hamiltonian": ["hamiltonian"],
+    "momentum": ["momentum_x", "momentum_y", "momentum_z"],
+    "lapse": ["lapse"],
+    "shift": ["shift_x", "shift_y", "shift_z"],
+    "bernoulli": ["bernoulli"],
+}
+TITLES = {
+    "hamiltonian": "Hamiltonian constraint",
+    "momentum": "momentum constraint",
+    "lapse": "maximal slicing (d_t K)",
+    "shift": "minimal distortion (D^j Sigma_ij)",
+    "bernoulli": "Bernoulli (h alpha / lorentz - C_B)",
+}
+
+
+def main():
+    report = json.load(open(sys.argv[1]))
+    out_dir = sys.argv[2]
+    axis = report["axis_rescaled"]
+    x = axis["x"]
+    levels = report["levels"]
+    for eq, columns in GROUPS.items():
+        if eq not in report.get("equations", {}):
+            continue
+        present = [c for c in columns if c in axis]
+        if not present:
+            continue
+        fig, panels = plt.subplots(len(present), 1, figsize=(7, 2.6 * len(present)), sharex=True, squeeze=False)
+        for panel, column in zip(panels[:, 0], present):
+            for q, series in enumerate(axis[column]):
+                pts = [(xi, v) for xi, v in zip(x, series) if v is not None and not (isinstance(v, float) and math.isnan(v))]
+                if not pts:
+                    continue
+                label = f"n = {levels[q]['n']}, x {4 ** q}"
+                panel.plot([p[0] for p in pts], [p[1] for p in pts], marker=".", lw=1, ms=3, label=label)
+            panel.set_ylabel(column)
+            panel.axhline(0, color="0.6", lw=0.5)
+        verdict = report["equations"][eq]["verdict"]
+        orders = report["equations"][eq]["order_l2"]
+        panels[0, 0].set_title(f"{TITLES[eq]}: L2 orders {', '.join(f'{o:.2f}' for o in orders)}; {verdict}", fontsize=9)
+        panels[0, 0].legend(fontsize=8)
+        panels[-1, 0].set_xlabel("x (hatted)")
+        fig.tight_layout()
+        path = os.path.join(out_dir, f"ire_{eq}.png")
+        fig.savefig(path + ".tmp.png", dpi=110)
+        os.replace(path + ".tmp.png", path)  # atomic: a crash never leaves a half-written plot
+        plt.close(fig)
+
+
+if __name__ == "__main__":
+    main()
