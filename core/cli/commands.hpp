@@ -23,6 +23,7 @@ struct ValidateOptions {
   std::string output;
   bool force = false;
   bool plots = true;
+  std::vector<std::string> only;  ///< judge only these equations (all others are reported); empty: all
 };
 /// Runs the parameter file at dx, dx/2, ... (n doubled, same cube) with the ire plugin, prints each
 /// equation's residual norms and convergence orders, writes validate.json (and PNG plots); exit 0

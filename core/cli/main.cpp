@@ -75,6 +75,10 @@ int main(int argc, char** argv) {
   validate->add_option("--output", vopt.output, "directory (default runs/<parfile stem>_validate)");
   validate->add_flag("--force", vopt.force, "replace an existing validate directory");
   validate->add_flag("!--no-plots", vopt.plots, "skip the PNG plots (python3 with matplotlib)");
+  validate->add_option("--only", vopt.only,
+                       "judge only these equations (hamiltonian, momentum, lapse, shift), e.g. for manufactured "
+                       "configurations that satisfy one equation; the others are reported")
+      ->allow_extra_args(false);
   add_plugin_path(validate);
 
   auto* plugins = app.add_subcommand("plugins", "list the plugins on the plugin path");

@@ -90,12 +90,18 @@ void declare(core::PluginBuilder& b) {
       .greater_than(0);
   b.real("chi_amplitude").doc("chi = 1 + chi_amplitude G (0: no chi gradient term)").default_value(0.3);
   b.real("eta_amplitude").doc("eta = 1 + eta_amplitude G (0: no eta gradient term)").default_value(-0.25).greater_than(-1);
+  b.real("puncture_phi")
+      .doc("the constant stand-in for puncture_phi, so that phi = puncture_phi + chi differs from chi; 0 makes the "
+           "configuration a physical one (gamma = chi^4 delta), which the ire plugin can check")
+      .default_value(0.1)
+      .at_least(0);
   b.keyword("omit", {"none", "chi", "eta", "puncture_phi"})
       .doc("leave one field out, to test the momentum plugin's refusal")
       .default_value(std::string("none"));
 
   b.schedule(Bin::startup, "publish", [state](Context& ctx) {
      state->problem.sigma = ctx.params().real("sigma");
+     state->problem.puncture_phi = ctx.params().real("puncture_phi");
      state->problem.chi_bump.amp = ctx.params().real("chi_amplitude");
      state->problem.eta_bump.amp = ctx.params().real("eta_amplitude");
      state->fluid->sigma_value = state->problem.sigma;
