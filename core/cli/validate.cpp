@@ -139,10 +139,11 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
     std::vector<std::string> args{self, "run", (dir / "parfile.yaml").string(), "--output", lv.dir.string(),
                                   "--set", fmt::format("grid.n={}", lv.n), "--set", fmt::format("grid.dx={:.17g}", lv.dx),
                                   "--set", fmt::format("ire.exclude_cells={}", exclude << q),
-                                  "--set", fmt::format("ire.surface_cells={}", surface << q)};
+                                  "--set", fmt::format("ire.surface_cells={}", surface << q),
+                                  "--set", fmt::format("ire.stride={}", 1 << q)};
     for (const std::string& o : common.overrides)
       if (o.rfind("grid.n=", 0) != 0 && o.rfind("grid.dx=", 0) != 0 && o.rfind("ire.exclude_cells=", 0) != 0 &&
-          o.rfind("ire.surface_cells=", 0) != 0)
+          o.rfind("ire.surface_cells=", 0) != 0 && o.rfind("ire.stride=", 0) != 0)
         args.insert(args.end(), {"--set", o});
     for (const std::string& p : common.plugin_dirs) args.insert(args.end(), {"--plugin-path", p});
     fmt::print("validate: level {} of {}: n = {}, dx = {:.9g} ...\n", q + 1, opt.levels, lv.n, lv.dx);
@@ -217,16 +218,21 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
     if (!sl2.empty() && !exact)
       fmt::print("{:<12} surface band: L2 {:.3e} -> {:.3e}, order {:.2f}\n", "", sl2.front(), sl2.back(), osurf.back());
   }
-  // Pointwise: the residuals at the coarsest run's axis points, times 4^q at level q.
+  // Pointwise: the residuals at the coarsest run's axis points (every run evaluates there: ire.stride),
+  // times 4^q at level q.
   const Level& coarse = levels[0];
+  for (const Level& lv : levels) {
+    bool same = lv.axis.size() == coarse.axis.size();
+    for (std::size_t i = 0; same && i < coarse.axis.size(); ++i) same = std::fabs(lv.axis[i][0] - coarse.axis[i][0]) <= 1e-9 * (1 + std::fabs(coarse.axis[i][0]));
+    if (!same) throw RunFailure(fmt::format("validate: the x-axis points of {} differ from the coarsest run's", (lv.dir / "ire_axis.tsv").string()));
+  }
   json axis;
   for (std::size_t c = 0; c < coarse.axis_names.size(); ++c) {
     std::vector<std::vector<double>> series;
     for (std::size_t q = 0; q < levels.size(); ++q) {
-      const std::size_t stride = std::size_t{1} << q;
       std::vector<double> values;
       for (std::size_t i = 0; i < coarse.axis.size(); ++i) {
-        const std::vector<double>& row = levels[q].axis[i * stride];
+        const std::vector<double>& row = levels[q].axis[i];
         values.push_back(c == 0 ? row[c] : row[c] * std::pow(4.0, static_cast<double>(q)));
       }
       series.push_back(values);

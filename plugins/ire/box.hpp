@@ -4,6 +4,7 @@
 // component's parity under z -> -z is (-1)^(number of z indices): scalars, tensors and the
 // Christoffel symbols alike (no time reversal is involved in the equatorial reflection).
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "bhnsid/interfaces/grid.hpp"
@@ -30,14 +31,22 @@ struct Box {
   }
 };
 
-/// One component on the box; zsign is its parity under z -> -z.
+/// One component on the box; zsign is its parity under z -> -z. A field with `slot` holds values
+/// only at some points (the derived quantities where the residuals need them): v[slot[at(i, j, k)]].
 struct Field {
   std::vector<double> v;
   double zsign = 1;
+  const std::vector<std::int32_t>* slot = nullptr;
+  double& at(const Box& b, int i, int j, int k) {
+    const std::size_t p = b.at(i, j, k);
+    return v[slot ? static_cast<std::size_t>((*slot)[p]) : p];
+  }
 };
 
 inline double get(const Box& b, const Field& f, int i, int j, int k) {
-  return k >= 0 ? f.v[b.at(i, j, k)] : f.zsign * f.v[b.at(i, j, -k)];
+  std::size_t p = b.at(i, j, k < 0 ? -k : k);
+  if (f.slot) p = static_cast<std::size_t>((*f.slot)[p]);
+  return k >= 0 ? f.v[p] : f.zsign * f.v[p];
 }
 
 /// Centred first difference along axis a (0, 1, 2) at (i, j, k).

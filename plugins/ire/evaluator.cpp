@@ -19,7 +19,52 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 int zcount(int a) { return a == 2 ? 1 : 0; }
 
-Field make(const Box& b, int z_indices) { return Field{std::vector<double>(b.size(), 0.0), zparity(z_indices)}; }
+Field make(const Box& b, int z_indices) { return Field{std::vector<double>(b.size(), 0.0), zparity(z_indices), nullptr}; }
+
+// The points where the derived quantities are needed: the sampled points and their six axis
+// neighbours (below z = 0 by their mirror images), each with a slot in the compact arrays.
+struct Needed {
+  std::vector<std::int32_t> slot;         // per box point: its slot, -1 where not needed
+  std::vector<std::array<int, 3>> points;  // per slot
+};
+
+bool sampled(const Box& b, int stride, int i, int j, int k) {
+  return i % stride == 0 && j % stride == 0 && k % stride == 0 && b.inside(i, j, k, 2);
+}
+
+Needed needed_points(const Box& b, int stride) {
+  Needed n;
+  n.slot.assign(b.size(), -1);
+  for (int k = 0; k < b.nz; ++k)
+    for (int j = 0; j < b.ny; ++j)
+      for (int i = 0; i < b.nx; ++i) {
+        if (!sampled(b, stride, i, j, k)) continue;
+        const int offsets[7][3] = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+        for (const auto& o : offsets) {
+          const int ii = i + o[0], jj = j + o[1], kk = std::abs(k + o[2]);
+          std::int32_t& s = n.slot[b.at(ii, jj, kk)];
+          if (s >= 0) continue;
+          s = static_cast<std::int32_t>(n.points.size());
+          n.points.push_back({ii, jj, kk});
+        }
+      }
+  return n;
+}
+
+Field make_compact(const Needed& n, int z_indices) {
+  return Field{std::vector<double>(n.points.size(), 0.0), zparity(z_indices), &n.slot};
+}
+
+// Calls fn(i, j, k) for every needed point, in parallel.
+template <class Fn>
+void for_needed(const Needed& n, Fn&& fn) {
+  const auto count = static_cast<std::ptrdiff_t>(n.points.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t q = 0; q < count; ++q) {
+    const auto& p = n.points[static_cast<std::size_t>(q)];
+    fn(p[0], p[1], p[2]);
+  }
+}
 
 // One grid component copied onto the box.
 Field copy(const Grid& grid, const Box& b, const char* name, int comp, int z_indices) {
@@ -124,14 +169,14 @@ void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, Geometr
 
 // K_ij = phi^-2 Ahat_ij, Ahat = Bowen-York + Zhat, Zhat^ij = chi^7/(2 eta) (LW)^ij with the box's
 // own D0 of W (margin 1).
-void fill_extrinsic(const Grid& grid, const Box& b, const Inputs& in, const Field& phi, Geometry& g) {
+void fill_extrinsic(const Grid& grid, const Box& b, const Inputs& in, const Field& phi, const Needed& need, Geometry& g) {
   const Field chi = copy(grid, b, fields::chi, 0, 0), eta = copy(grid, b, fields::eta, 0, 0);
   std::array<Field, 3> w;
   for (int a = 0; a < 3; ++a) w[static_cast<std::size_t>(a)] = copy(grid, b, fields::wvec, a, zcount(a));
   for (int a = 0; a < 3; ++a)
-    for (int c = a; c < 3; ++c) g.k_down[static_cast<std::size_t>(pair(a, c))] = make(b, zcount(a) + zcount(c));
+    for (int c = a; c < 3; ++c) g.k_down[static_cast<std::size_t>(pair(a, c))] = make_compact(need, zcount(a) + zcount(c));
   const bool has_w = grid.has_field(fields::wvec);
-  for_points(b, 1, [&](int i, int j, int k) {
+  for_needed(need, [&](int i, int j, int k) {
     const std::size_t p = b.at(i, j, k);
     double dw[3][3] = {};  // dw[a][c] = d_a W^c
     if (has_w)
@@ -156,27 +201,27 @@ void fill_extrinsic(const Grid& grid, const Box& b, const Inputs& in, const Fiel
                   (in.momentum[static_cast<std::size_t>(a)] * n[c] + in.momentum[static_cast<std::size_t>(c)] * n[a] -
                    (delta - n[a] * n[c]) * pn);
         // Ahat_ij = Ahat^ij (the conformal metric is flat); K_ij = phi^-2 Ahat_ij.
-        g.k_down[static_cast<std::size_t>(pair(a, c))].v[p] = inv_phi2 * ahat;
+        g.k_down[static_cast<std::size_t>(pair(a, c))].at(b, i, j, k) = inv_phi2 * ahat;
       }
   });
 }
 
 // Gamma^k_ij, K^ij, K, d alpha and Sigma_ij (margin 1).
-void fill_connection(const Box& b, Geometry& g) {
+void fill_connection(const Box& b, const Needed& need, Geometry& g) {
   for (int c = 0; c < 3; ++c)
     for (int a = 0; a < 3; ++a)
       for (int d = a; d < 3; ++d)
         g.christoffel[static_cast<std::size_t>(c)][static_cast<std::size_t>(pair(a, d))] =
-            make(b, zcount(c) + zcount(a) + zcount(d));
+            make_compact(need, zcount(c) + zcount(a) + zcount(d));
   for (int a = 0; a < 3; ++a)
     for (int c = a; c < 3; ++c) {
-      g.k_up[static_cast<std::size_t>(pair(a, c))] = make(b, zcount(a) + zcount(c));
-      g.sigma[static_cast<std::size_t>(pair(a, c))] = make(b, zcount(a) + zcount(c));
+      g.k_up[static_cast<std::size_t>(pair(a, c))] = make_compact(need, zcount(a) + zcount(c));
+      g.sigma[static_cast<std::size_t>(pair(a, c))] = make_compact(need, zcount(a) + zcount(c));
     }
-  for (int a = 0; a < 3; ++a) g.dalpha[static_cast<std::size_t>(a)] = make(b, zcount(a));
-  g.k_trace = make(b, 0);
-  for_points(b, 1, [&](int i, int j, int k) {
-    const std::size_t p = b.at(i, j, k);
+  for (int a = 0; a < 3; ++a) g.dalpha[static_cast<std::size_t>(a)] = make_compact(need, zcount(a));
+  g.k_trace = make_compact(need, 0);
+  for_needed(need, [&](int i, int j, int k) {
+    const std::size_t p = b.at(i, j, k), q = static_cast<std::size_t>(need.slot[p]);
     const std::array<double, 6> gl = metric_at(g, b, p), gu = inverse(gl);
     double dg[3][6];  // dg[l][pair] = d_l gamma_pair
     for (int l = 0; l < 3; ++l)
@@ -191,10 +236,10 @@ void fill_connection(const Box& b, Geometry& g) {
         }
     for (int c = 0; c < 3; ++c)
       for (int a = 0; a < 3; ++a)
-        for (int d = a; d < 3; ++d) g.christoffel[static_cast<std::size_t>(c)][static_cast<std::size_t>(pair(a, d))].v[p] = gamma[c][a][d];
+        for (int d = a; d < 3; ++d) g.christoffel[static_cast<std::size_t>(c)][static_cast<std::size_t>(pair(a, d))].v[q] = gamma[c][a][d];
     double kd[3][3], ku[3][3], trace = 0;
     for (int a = 0; a < 3; ++a)
-      for (int c = 0; c < 3; ++c) kd[a][c] = g.k_down[static_cast<std::size_t>(pair(a, c))].v[p];
+      for (int c = 0; c < 3; ++c) kd[a][c] = g.k_down[static_cast<std::size_t>(pair(a, c))].v[q];
     for (int a = 0; a < 3; ++a)
       for (int c = 0; c < 3; ++c) {
         double s = 0;
@@ -204,9 +249,9 @@ void fill_connection(const Box& b, Geometry& g) {
         trace += gu[static_cast<std::size_t>(pair(a, c))] * kd[a][c];
       }
     for (int a = 0; a < 3; ++a)
-      for (int c = a; c < 3; ++c) g.k_up[static_cast<std::size_t>(pair(a, c))].v[p] = ku[a][c];
-    g.k_trace.v[p] = trace;
-    for (int a = 0; a < 3; ++a) g.dalpha[static_cast<std::size_t>(a)].v[p] = d0(b, g.alpha, a, i, j, k);
+      for (int c = a; c < 3; ++c) g.k_up[static_cast<std::size_t>(pair(a, c))].v[q] = ku[a][c];
+    g.k_trace.v[q] = trace;
+    for (int a = 0; a < 3; ++a) g.dalpha[static_cast<std::size_t>(a)].v[q] = d0(b, g.alpha, a, i, j, k);
     // dtg_ij = -2 alpha K_ij + D_i beta_j + D_j beta_i; Sigma = its trace-free part.
     double db[3][3];  // D_a beta_c
     for (int a = 0; a < 3; ++a)
@@ -223,7 +268,7 @@ void fill_connection(const Box& b, Geometry& g) {
       for (int c = 0; c < 3; ++c) tr += gu[static_cast<std::size_t>(pair(a, c))] * dtg[a][c];
     for (int a = 0; a < 3; ++a)
       for (int c = a; c < 3; ++c)
-        g.sigma[static_cast<std::size_t>(pair(a, c))].v[p] = dtg[a][c] - gl[static_cast<std::size_t>(pair(a, c))] * tr / 3.0;
+        g.sigma[static_cast<std::size_t>(pair(a, c))].v[q] = dtg[a][c] - gl[static_cast<std::size_t>(pair(a, c))] * tr / 3.0;
   });
 }
 
@@ -232,10 +277,10 @@ struct PointResiduals {
 };
 
 // The residuals at a point with margin 2.
-PointResiduals residuals_at(const Box& b, const Geometry& g, double sigma2, int i, int j, int k) {
-  const std::size_t p = b.at(i, j, k);
+PointResiduals residuals_at(const Box& b, const Needed& need, const Geometry& g, double sigma2, int i, int j, int k) {
+  const std::size_t p = b.at(i, j, k), q = static_cast<std::size_t>(need.slot[p]);
   const std::array<double, 6> gl = metric_at(g, b, p), gu = inverse(gl);
-  auto G = [&](int c, int a, int d) { return g.christoffel[static_cast<std::size_t>(c)][static_cast<std::size_t>(pair(a, d))].v[p]; };
+  auto G = [&](int c, int a, int d) { return g.christoffel[static_cast<std::size_t>(c)][static_cast<std::size_t>(pair(a, d))].v[q]; };
   auto dG = [&](int l, int c, int a, int d) {
     return d0(b, g.christoffel[static_cast<std::size_t>(c)][static_cast<std::size_t>(pair(a, d))], l, i, j, k);
   };
@@ -254,8 +299,8 @@ PointResiduals residuals_at(const Box& b, const Geometry& g, double sigma2, int 
   double kk = 0;
   for (int a = 0; a < 3; ++a)
     for (int c = 0; c < 3; ++c)
-      kk += g.k_down[static_cast<std::size_t>(pair(a, c))].v[p] * g.k_up[static_cast<std::size_t>(pair(a, c))].v[p];
-  const double trace = g.k_trace.v[p], rho_e = g.rho_e.v[p];
+      kk += g.k_down[static_cast<std::size_t>(pair(a, c))].v[q] * g.k_up[static_cast<std::size_t>(pair(a, c))].v[q];
+  const double trace = g.k_trace.v[q], rho_e = g.rho_e.v[p];
   PointResiduals out{};
   out.hamiltonian = ricci + trace * trace - kk - 16.0 * pi * sigma2 * rho_e;
   double dtrace[3];
@@ -266,8 +311,8 @@ PointResiduals residuals_at(const Box& b, const Geometry& g, double sigma2, int 
     for (int c = 0; c < 3; ++c) {
       s += d0(b, g.k_up[static_cast<std::size_t>(pair(a, c))], c, i, j, k);
       for (int e = 0; e < 3; ++e)
-        s += G(a, c, e) * g.k_up[static_cast<std::size_t>(pair(e, c))].v[p] +
-             G(c, c, e) * g.k_up[static_cast<std::size_t>(pair(a, e))].v[p];
+        s += G(a, c, e) * g.k_up[static_cast<std::size_t>(pair(e, c))].v[q] +
+             G(c, c, e) * g.k_up[static_cast<std::size_t>(pair(a, e))].v[q];
       s -= up(a, c) * dtrace[c];
     }
     out.momentum[a] = s - 8.0 * pi * sigma2 * g.j_up[static_cast<std::size_t>(a)].v[p];
@@ -278,7 +323,7 @@ PointResiduals residuals_at(const Box& b, const Geometry& g, double sigma2, int 
   for (int a = 0; a < 3; ++a)
     for (int c = 0; c < 3; ++c) {
       double dd = 0.5 * (d0(b, g.dalpha[static_cast<std::size_t>(c)], a, i, j, k) + d0(b, g.dalpha[static_cast<std::size_t>(a)], c, i, j, k));
-      for (int e = 0; e < 3; ++e) dd -= G(e, a, c) * g.dalpha[static_cast<std::size_t>(e)].v[p];
+      for (int e = 0; e < 3; ++e) dd -= G(e, a, c) * g.dalpha[static_cast<std::size_t>(e)].v[q];
       lap_alpha += up(a, c) * dd;
     }
   double advect = 0;
@@ -286,7 +331,7 @@ PointResiduals residuals_at(const Box& b, const Geometry& g, double sigma2, int 
   const double al = g.alpha.v[p];
   out.lapse = -lap_alpha + al * (ricci + trace * trace + 4.0 * pi * sigma2 * (g.trace_s.v[p] - 3.0 * rho_e)) + advect;
   // D^c Sigma_ac = gamma^cd (d_d Sigma_ac - Gamma^e_da Sigma_ec - Gamma^e_dc Sigma_ae)
-  auto S = [&](int a, int c) { return g.sigma[static_cast<std::size_t>(pair(a, c))].v[p]; };
+  auto S = [&](int a, int c) { return g.sigma[static_cast<std::size_t>(pair(a, c))].v[q]; };
   for (int a = 0; a < 3; ++a) {
     double s = 0;
     for (int c = 0; c < 3; ++c)
@@ -298,6 +343,31 @@ PointResiduals residuals_at(const Box& b, const Geometry& g, double sigma2, int 
     out.shift[a] = s;
   }
   return out;
+}
+
+// The mask widened by w points in the max norm (a cube of side 2w + 1 about every marked point),
+// axis by axis; below z = 0 by symmetry.
+std::vector<std::uint8_t> dilate(const Box& b, std::vector<std::uint8_t> m, int w) {
+  if (w == 0) return m;
+  std::vector<std::uint8_t> out(m.size(), 0);
+  for (int axis = 0; axis < 3; ++axis) {
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < b.nz; ++k)
+      for (int j = 0; j < b.ny; ++j)
+        for (int i = 0; i < b.nx; ++i) {
+          std::uint8_t v = 0;
+          for (int d = -w; d <= w && !v; ++d) {
+            int ii = i, jj = j, kk = k;
+            (axis == 0 ? ii : axis == 1 ? jj : kk) += d;
+            if (axis == 2 && b.mirror) kk = std::abs(kk);
+            if (ii < 0 || jj < 0 || kk < 0 || ii >= b.nx || jj >= b.ny || kk >= b.nz) continue;
+            v = m[b.at(ii, jj, kk)];
+          }
+          out[b.at(i, j, k)] = v;
+        }
+    std::swap(m, out);
+  }
+  return m;
 }
 
 // Points near the puncture: the excision mask (or the cube of the rule max(M/2, 3 dx)) widened by
@@ -329,25 +399,13 @@ std::vector<std::uint8_t> puncture_region(const Grid& grid, const Box& b, const 
         }
         core[b.at(i, j, k)] = in_core;
       }
-  const int w = in.exclude_cells;
-  for_points(b, 0, [&](int i, int j, int k) {
-    for (int c = -w; c <= w; ++c)
-      for (int bb = -w; bb <= w; ++bb)
-        for (int a = -w; a <= w; ++a) {
-          const int ii = i + a, jj = j + bb, kk = std::abs(k + c);
-          if (ii < 0 || jj < 0 || ii >= b.nx || jj >= b.ny || kk >= b.nz || (!b.mirror && k + c < 0)) continue;
-          if (core[b.at(ii, jj, kk)]) {
-            near[b.at(i, j, k)] = 1;
-            return;
-          }
-        }
-  });
+  near = dilate(b, std::move(core), in.exclude_cells);
   return near;
 }
 
 // Points within `cells` of the star's surface (a rho0 > 0 point next to a rho0 = 0 one).
 std::vector<std::uint8_t> surface_band(const Box& b, const Geometry& g, int cells) {
-  std::vector<std::uint8_t> edge(b.size(), 0), band(b.size(), 0);
+  std::vector<std::uint8_t> edge(b.size(), 0), band;
   auto matter = [&](int i, int j, int k) { return get(b, g.rho0, i, j, k) > 0; };
   for_points(b, 1, [&](int i, int j, int k) {
     const bool m = matter(i, j, k);
@@ -355,18 +413,7 @@ std::vector<std::uint8_t> surface_band(const Box& b, const Geometry& g, int cell
         m != matter(i, j, k + 1) || m != matter(i, j, k - 1))
       edge[b.at(i, j, k)] = 1;
   });
-  for_points(b, 0, [&](int i, int j, int k) {
-    for (int c = -cells; c <= cells; ++c)
-      for (int bb = -cells; bb <= cells; ++bb)
-        for (int a = -cells; a <= cells; ++a) {
-          const int ii = i + a, jj = j + bb, kk = std::abs(k + c);
-          if (ii < 0 || jj < 0 || ii >= b.nx || jj >= b.ny || kk >= b.nz || (!b.mirror && k + c < 0)) continue;
-          if (edge[b.at(ii, jj, kk)]) {
-            band[b.at(i, j, k)] = 1;
-            return;
-          }
-        }
-  });
+  band = dilate(b, std::move(edge), cells);
   return band;
 }
 
@@ -392,8 +439,9 @@ Result evaluate(const Grid& grid, const Inputs& in) {
   Geometry g;
   Field phi;
   fill_point_fields(grid, b, in, g, phi);
-  fill_extrinsic(grid, b, in, phi, g);
-  fill_connection(b, g);
+  const Needed need = needed_points(b, in.stride);
+  fill_extrinsic(grid, b, in, phi, need, g);
+  fill_connection(b, need, g);
   const std::vector<std::uint8_t> near = puncture_region(grid, b, in);
   const std::vector<std::uint8_t> band = in.fluid ? surface_band(b, g, in.surface_cells) : std::vector<std::uint8_t>(b.size(), 0);
   const double sigma2 = in.sigma * in.sigma;
@@ -415,13 +463,14 @@ Result evaluate(const Grid& grid, const Inputs& in) {
     for (int k = 0; k < b.nz; ++k)
       for (int j = 0; j < b.ny; ++j)
         for (int i = 0; i < b.nx; ++i) {
+          if (i % in.stride || j % in.stride || k % in.stride) continue;
           const bool on_axis = j == jaxis && k == kaxis;
           if (!b.inside(i, j, k, 2)) {
             if (on_axis) axis_rows[static_cast<std::size_t>(i)] = fmt::format("{:.10g}\tnan\tnan\tnan\tnan\tnan\tnan\tnan\tnan\tnan\t-\n", b.x0 + b.dx * i);
             continue;
           }
           const std::size_t p = b.at(i, j, k);
-          const PointResiduals r = residuals_at(b, g, sigma2, i, j, k);
+          const PointResiduals r = residuals_at(b, need, g, sigma2, i, j, k);
           const bool matter = g.rho0.v[p] > 0;
           const double bern = bernoulli && matter ? g.enthalpy.v[p] * g.alpha.v[p] / g.lorentz.v[p] - in.bernoulli : nan;
           const int region = near[p] ? 2 : band[p] ? 1 : 0;

@@ -23,6 +23,7 @@ struct Inputs {
   std::array<double, 3> position{}, momentum{};
   int exclude_cells = 2;    ///< the puncture's region: excision cube (or its rule) widened by this
   int surface_cells = 2;    ///< the star's surface band: points this close to a rho0 > 0 / = 0 change
+  int stride = 1;           ///< residuals at every stride-th point per axis (the points of a coarser grid)
 };
 
 struct Norms {
