@@ -31,7 +31,6 @@ struct Sources {
   double inv_2h = 0;              ///< 1/(2h) of the level
   double sigma2 = 1;              ///< sigma^2: the matter term of the hatted equation carries it (§1.3)
   double source_scale = 1;        ///< 1 except in tests (test_source_scale)
-  double coupling_scale = 1;      ///< 1 except in tests (test_coupling_scale)
 };
 
 /// (LW)^ij = d_i W^j + d_j W^i - (2/3) delta_ij d_k W^k, stored xx, xy, xz, yy, yz, zz (a struct of
@@ -64,7 +63,7 @@ struct MomentumLower {
     const double* c = s.chi + idx;
     const double* e = s.eta + idx;
     const std::ptrdiff_t sy = s.sy, sz = s.sz;
-    const double inv_eta = s.coupling_scale * h / e[0], seven_inv_chi = s.coupling_scale * 7.0 * h / c[0];
+    const double inv_eta = h / e[0], seven_inv_chi = 7.0 * h / c[0];
     // d_j ln(eta chi^-7) = d_j eta/eta - 7 d_j chi/chi by centred differences of the coefficient fields.
     const double gjx = (e[1] - e[-1]) * inv_eta - (c[1] - c[-1]) * seven_inv_chi;
     const double gjy = (e[sy] - e[-sy]) * inv_eta - (c[sy] - c[-sy]) * seven_inv_chi;

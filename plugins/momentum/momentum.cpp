@@ -38,9 +38,8 @@ int required_field(const Grid& grid, const char* name) {
 
 }  // namespace
 
-MomentumEquation::MomentumEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, double source_scale,
-                                   double coupling_scale)
-    : grid_(grid), fluid_(fluid), puncture_(puncture), source_scale_(source_scale), coupling_scale_(coupling_scale) {
+MomentumEquation::MomentumEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, double source_scale)
+    : grid_(grid), fluid_(fluid), puncture_(puncture), source_scale_(source_scale) {
   chi_ = required_field(grid, fields::chi);
   eta_ = required_field(grid, fields::eta);
   puncture_phi_ = required_field(grid, fields::puncture_phi);
@@ -82,7 +81,6 @@ Sources MomentumEquation::sources(int level) const {
   s.sz = lv.sz;
   s.inv_2h = 0.5 / lv.dx;
   s.source_scale = source_scale_;
-  s.coupling_scale = coupling_scale_;
   if (fluid_) {
     s.sigma2 = fluid_->sigma() * fluid_->sigma();
     s.rho0 = grid_.data(rho0_, 0, level);

@@ -18,8 +18,7 @@ class MomentumEquation final : public EllipticEquation {
   /// Registers wvec, ahat and aa_hat (and, with a fluid, the fluid fields); reads chi, eta and
   /// puncture_phi, which must exist already (core::RunFailure naming the missing one). fluid and
   /// puncture may be null (vacuum: no J term; no hole: no Bowen-York term).
-  MomentumEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, double source_scale,
-                   double coupling_scale = 1.0);
+  MomentumEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, double source_scale);
 
   std::string name() const override { return "momentum"; }
   std::string unknown() const override { return fields::wvec; }
@@ -39,7 +38,6 @@ class MomentumEquation final : public EllipticEquation {
   const Fluid* fluid_;
   const Puncture* puncture_;
   double source_scale_;
-  double coupling_scale_;
   int w_ = -1, chi_ = -1, eta_ = -1, puncture_phi_ = -1, ahat_ = -1, aa_ = -1;
   int rho0_ = -1, enthalpy_ = -1, velocity_ = -1;
 };

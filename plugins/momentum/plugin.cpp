@@ -30,10 +30,6 @@ void declare(core::PluginBuilder& b) {
       .doc("TEST ONLY: multiplies the matter term 16 pi sigma^2 eta phi^10 chi^-7 J^i by this factor, so that "
            "tests can show that a one-coefficient error is detected; 1 for physics")
       .default_value(1.0);
-  b.real("test_coupling_scale")
-      .doc("TEST ONLY: multiplies the term (LW)^ij d_j ln(eta chi^-7) by this factor (dimensionless), so that tests "
-           "can show that the IRE (plugin ire, bhnsid validate) detects a one-coefficient error; 1 for physics")
-      .default_value(1.0);
   b.real("curvature_tolerance")
       .doc("the loop goes on until the Ahat that the equations were solved with (filled before the solve) and the "
            "Ahat of the solved W differ by at most this times max |Zhat| (or by 1e-13) on the finest level")
@@ -44,8 +40,7 @@ void declare(core::PluginBuilder& b) {
      auto& grid = ctx.services().get<Grid>("grid");
      const auto* fluid = ctx.services().find<Fluid>("hydro");
      const auto* puncture = ctx.services().find<Puncture>("puncture");
-     state->equation = std::make_shared<MomentumEquation>(grid, fluid, puncture, ctx.params().real("test_source_scale"),
-                                                          ctx.params().real("test_coupling_scale"));
+     state->equation = std::make_shared<MomentumEquation>(grid, fluid, puncture, ctx.params().real("test_source_scale"));
      ctx.publish<EllipticEquation>("equation.momentum", state->equation);
      ctx.log().info("momentum constraint for W^i: {}, {}", fluid ? "with matter" : "vacuum",
                     puncture ? "with a Bowen-York puncture" : "no black hole");

@@ -32,6 +32,7 @@ struct Sources {
   const double* velocity[3] = {nullptr, nullptr, nullptr};  ///< the fluid's V^i, matter only
   double sigma2 = 1;        ///< sigma^2 on the matter term (physics-notes §1.3)
   double source_scale = 1;  ///< TEST ONLY factor on the Ahat term; 1 for physics
+  double coupling_scale = 1;  ///< TEST ONLY factor on the (6/phi)(...) d phi term; 1 for physics
   double inv_2h = 0;        ///< 1/(2 dx) of the level: centred first derivatives
   std::ptrdiff_t sy = 0, sz = 0;  ///< the level's strides
 };
@@ -77,7 +78,7 @@ struct ShiftLower {
                  ayz = s.ahat[4][idx], azz = s.ahat[5][idx];
     const double inv_phi2 = inv_phi * inv_phi;
     const double ka = 2.0 * s.source_scale * inv_phi2 * inv_phi2 * inv_phi2;
-    const double six_phi = 6.0 * inv_phi;
+    const double six_phi = 6.0 * s.coupling_scale * inv_phi;
     Triple n{six_phi * shear_x - ka * (axx * dax + axy * day + axz * daz),
              six_phi * shear_y - ka * (axy * dax + ayy * day + ayz * daz),
              six_phi * shear_z - ka * (axz * dax + ayz * day + azz * daz)};

@@ -60,6 +60,11 @@ void declare(core::PluginBuilder& b) {
       .doc("the box of the local sweeps: the held points' bounding box widened by this many points per side")
       .default_value(4)
       .at_least(0);
+  b.real("test_coupling_scale")
+      .doc("TEST ONLY: multiplies the term (6/phi)[(d_j beta^i + d_i beta^j) dphi_j - (2/3) dphi_i div beta] "
+           "(dimensionless), so that tests can show that the IRE (bhnsid validate) detects a one-coefficient error "
+           "in vacuum, where the Ahat term is small; 1 for physics")
+      .default_value(1.0);
   b.real("test_source_scale")
       .doc("TEST ONLY: multiplies the Ahat term 2 phi^-6 Ahat^ij d_j alpha (dimensionless), so that tests can show "
            "that a one-coefficient error is detected; 1 for physics")
@@ -73,6 +78,7 @@ void declare(core::PluginBuilder& b) {
      settings.excision_value =
          ctx.params().string("excision_value") == "plain" ? ExcisionValue::plain : ExcisionValue::lorentz;
      settings.source_scale = ctx.params().real("test_source_scale");
+     settings.coupling_scale = ctx.params().real("test_coupling_scale");
      settings.min_side = ctx.params().real("excision_min_side");
      settings.lattice = ctx.params().real("excision_lattice");
      settings.local_sweeps = static_cast<int>(ctx.params().integer("local_sweeps"));

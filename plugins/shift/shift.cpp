@@ -157,6 +157,7 @@ Sources ShiftEquation::sources(int level) const {
     s.sigma2 = fluid_->sigma() * fluid_->sigma();
   }
   s.source_scale = settings_.source_scale;
+  s.coupling_scale = settings_.coupling_scale;
   s.inv_2h = 0.5 / lv.dx;
   s.sy = lv.sy;
   s.sz = lv.sz;
