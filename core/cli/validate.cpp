@@ -40,6 +40,7 @@ struct Level {
   std::map<std::string, double> scalars;
   std::vector<std::vector<double>> axis;  // rows of ire_axis.tsv (x, then the residual columns)
   std::vector<std::string> axis_names;
+  std::vector<std::string> regions;  // per axis row: away, surface, puncture or -
 };
 
 std::string read_text(const fs::path& p) {
@@ -85,6 +86,7 @@ void read_axis(Level& lv) {
     std::vector<double> values;
     for (std::size_t c = 0; c + 1 < cells.size(); ++c) values.push_back(cells[c] == "nan" ? std::nan("") : std::stod(cells[c]));
     lv.axis.push_back(values);
+    lv.regions.push_back(cells.back());
   }
 }
 
@@ -240,12 +242,15 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
     axis[coarse.axis_names[c]] = c == 0 ? json(series[0]) : json(series);
   }
   out["axis_rescaled"] = axis;
+  out["axis_region"] = coarse.regions;
   out["passed"] = passed;
   write_file_atomic(dir / "validate.json", out.dump(1) + "\n");
   fmt::print("\nvalidate: {} ({} levels, threshold {:.2f}); validate.json in {}\n", passed ? "PASSED" : "FAILED",
              opt.levels, opt.threshold, dir.string());
   if (opt.plots) {
-    const std::string cmd = fmt::format("python3 '{}' '{}' '{}'", BHNSID_PLOT_SCRIPT, (dir / "validate.json").string(), dir.string());
+    // Debian's interpreter, where matplotlib is installed (scripts/install-deps.sh), before any other on PATH.
+    const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    const std::string cmd = fmt::format("{} '{}' '{}' '{}'", python, BHNSID_PLOT_SCRIPT, (dir / "validate.json").string(), dir.string());
     if (std::system(cmd.c_str()) != 0)
       fmt::print(stderr, "validate: warning: the plots were not made ({}); the table and validate.json are complete\n", cmd);
   }

@@ -19,45 +19,66 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 int zcount(int a) { return a == 2 ? 1 : 0; }
 
-Field make(const Box& b, int z_indices) { return Field{std::vector<double>(b.size(), 0.0), zparity(z_indices), nullptr}; }
 
-// The points where the derived quantities are needed: the sampled points and their six axis
-// neighbours (below z = 0 by their mirror images), each with a slot in the compact arrays.
-struct Needed {
-  std::vector<std::int32_t> slot;         // per box point: its slot, -1 where not needed
+// A set of points of the box, each with a slot in the compact arrays of the fields stored there.
+struct PointSet {
+  std::vector<std::int32_t> slot;          // per box point: its slot, -1 where not in the set
   std::vector<std::array<int, 3>> points;  // per slot
+  void add(const Box& b, int i, int j, int k) {
+    std::int32_t& s = slot[b.at(i, j, k)];
+    if (s >= 0) return;
+    s = static_cast<std::int32_t>(points.size());
+    points.push_back({i, j, k});
+  }
+};
+
+// Where the residuals are evaluated (every stride-th point with room for the stencils), where the
+// derived quantities are needed (those points and their six axis neighbours: inner) and where the
+// point fields are needed (inner and its axis neighbours: outer); below z = 0 by mirror images.
+struct Needed {
+  PointSet inner, outer;
 };
 
 bool sampled(const Box& b, int stride, int i, int j, int k) {
   return i % stride == 0 && j % stride == 0 && k % stride == 0 && b.inside(i, j, k, 2);
 }
 
+constexpr int kStar[7][3] = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+
 Needed needed_points(const Box& b, int stride) {
   Needed n;
-  n.slot.assign(b.size(), -1);
+  n.inner.slot.assign(b.size(), -1);
+  n.outer.slot.assign(b.size(), -1);
   for (int k = 0; k < b.nz; ++k)
     for (int j = 0; j < b.ny; ++j)
-      for (int i = 0; i < b.nx; ++i) {
-        if (!sampled(b, stride, i, j, k)) continue;
-        const int offsets[7][3] = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-        for (const auto& o : offsets) {
-          const int ii = i + o[0], jj = j + o[1], kk = std::abs(k + o[2]);
-          std::int32_t& s = n.slot[b.at(ii, jj, kk)];
-          if (s >= 0) continue;
-          s = static_cast<std::int32_t>(n.points.size());
-          n.points.push_back({ii, jj, kk});
-        }
-      }
+      for (int i = 0; i < b.nx; ++i)
+        if (sampled(b, stride, i, j, k))
+          for (const auto& o : kStar) n.inner.add(b, i + o[0], j + o[1], std::abs(k + o[2]));
+  for (const auto& p : n.inner.points)
+    for (const auto& o : kStar) n.outer.add(b, p[0] + o[0], p[1] + o[1], std::abs(p[2] + o[2]));
   return n;
 }
 
-Field make_compact(const Needed& n, int z_indices) {
+Field make_compact(const PointSet& n, int z_indices) {
   return Field{std::vector<double>(n.points.size(), 0.0), zparity(z_indices), &n.slot};
 }
 
-// Calls fn(i, j, k) for every needed point, in parallel.
+// One grid component copied onto the points of a set (zero where the grid has no such field).
+Field copy(const Grid& grid, const PointSet& set, const char* name, int comp, int z_indices) {
+  Field f = make_compact(set, z_indices);
+  if (!grid.has_field(name)) return f;
+  const Level& lv = grid.finest();
+  const double* src = grid.data(grid.field_id(name), comp, 0);
+  for (std::size_t q = 0; q < set.points.size(); ++q) {
+    const auto& p = set.points[q];
+    f.v[q] = src[lv.at(p[0], p[1], p[2])];
+  }
+  return f;
+}
+
+// Calls fn(i, j, k) for every point of the set, in parallel.
 template <class Fn>
-void for_needed(const Needed& n, Fn&& fn) {
+void for_needed(const PointSet& n, Fn&& fn) {
   const auto count = static_cast<std::ptrdiff_t>(n.points.size());
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t q = 0; q < count; ++q) {
@@ -66,17 +87,7 @@ void for_needed(const Needed& n, Fn&& fn) {
   }
 }
 
-// One grid component copied onto the box.
-Field copy(const Grid& grid, const Box& b, const char* name, int comp, int z_indices) {
-  Field f = make(b, z_indices);
-  if (!grid.has_field(name)) return f;
-  const Level& lv = grid.finest();
-  const double* src = grid.data(grid.field_id(name), comp, 0);
-  for (int k = 0; k < b.nz; ++k)
-    for (int j = 0; j < b.ny; ++j)
-      for (int i = 0; i < b.nx; ++i) f.v[b.at(i, j, k)] = src[lv.at(i, j, k)];
-  return f;
-}
+
 
 // The inverse of a symmetric 3x3 matrix given as xx, xy, xz, yy, yz, zz.
 std::array<double, 6> inverse(const std::array<double, 6>& g) {
@@ -110,33 +121,34 @@ std::array<double, 6> metric_at(const Geometry& g, const Box& b, std::size_t p) 
 }
 
 // The point values: phi, alpha, beta, gamma = phi^4 delta, the matter (hatted units).
-void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, Geometry& g, Field& phi) {
-  const Field chi = copy(grid, b, fields::chi, 0, 0), eta = copy(grid, b, fields::eta, 0, 0);
-  for (int a = 0; a < 3; ++a) g.beta_up[static_cast<std::size_t>(a)] = copy(grid, b, fields::shift, a, zcount(a));
-  phi = make(b, 0);
-  g.alpha = make(b, 0);
-  for (int p = 0; p < 6; ++p) g.gamma[static_cast<std::size_t>(p)] = make(b, (p == 2 || p == 4) ? 1 : 0);
-  g.rho_e = make(b, 0);
-  g.trace_s = make(b, 0);
-  g.lorentz = make(b, 0);
-  g.rho0 = make(b, 0);
-  g.enthalpy = make(b, 0);
+void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, const Needed& need, Geometry& g, Field& phi) {
+  const PointSet& set = need.outer;
+  const Field chi = copy(grid, set, fields::chi, 0, 0), eta = copy(grid, set, fields::eta, 0, 0);
+  for (int a = 0; a < 3; ++a) g.beta_up[static_cast<std::size_t>(a)] = copy(grid, set, fields::shift, a, zcount(a));
+  phi = make_compact(set, 0);
+  g.alpha = make_compact(set, 0);
+  for (int p = 0; p < 6; ++p) g.gamma[static_cast<std::size_t>(p)] = make_compact(set, (p == 2 || p == 4) ? 1 : 0);
+  g.rho_e = make_compact(set, 0);
+  g.trace_s = make_compact(set, 0);
+  g.lorentz = make_compact(set, 0);
+  g.rho0 = make_compact(set, 0);
+  g.enthalpy = make_compact(set, 0);
   for (int a = 0; a < 3; ++a) {
-    g.j_up[static_cast<std::size_t>(a)] = make(b, zcount(a));
-    g.beta_down[static_cast<std::size_t>(a)] = make(b, zcount(a));
+    g.j_up[static_cast<std::size_t>(a)] = make_compact(set, zcount(a));
+    g.beta_down[static_cast<std::size_t>(a)] = make_compact(set, zcount(a));
   }
   Field rho0, press, enthalpy;
   std::array<Field, 3> velocity;
   if (in.fluid) {
-    rho0 = copy(grid, b, fields::rho0, 0, 0);
-    press = copy(grid, b, fields::press, 0, 0);
-    enthalpy = copy(grid, b, fields::enthalpy, 0, 0);
+    rho0 = copy(grid, set, fields::rho0, 0, 0);
+    press = copy(grid, set, fields::press, 0, 0);
+    enthalpy = copy(grid, set, fields::enthalpy, 0, 0);
     for (int a = 0; a < 3; ++a)
       velocity[static_cast<std::size_t>(a)] =
-          in.moving ? copy(grid, b, fields::fluid_velocity, a, zcount(a)) : make(b, zcount(a));
+          in.moving ? copy(grid, set, fields::fluid_velocity, a, zcount(a)) : make_compact(set, zcount(a));
   }
-  for_points(b, 0, [&](int i, int j, int k) {
-    const std::size_t p = b.at(i, j, k);
+  for_needed(set, [&](int i, int j, int k) {
+    const auto p = static_cast<std::size_t>(set.slot[b.at(i, j, k)]);
     double ph = chi.v[p];
     if (in.puncture) {
       const double dx = b.x0 + b.dx * i - in.position[0], dy = b.y0 + b.dx * j - in.position[1],
@@ -170,14 +182,14 @@ void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, Geometr
 // K_ij = phi^-2 Ahat_ij, Ahat = Bowen-York + Zhat, Zhat^ij = chi^7/(2 eta) (LW)^ij with the box's
 // own D0 of W (margin 1).
 void fill_extrinsic(const Grid& grid, const Box& b, const Inputs& in, const Field& phi, const Needed& need, Geometry& g) {
-  const Field chi = copy(grid, b, fields::chi, 0, 0), eta = copy(grid, b, fields::eta, 0, 0);
+  const Field chi = copy(grid, need.outer, fields::chi, 0, 0), eta = copy(grid, need.outer, fields::eta, 0, 0);
   std::array<Field, 3> w;
-  for (int a = 0; a < 3; ++a) w[static_cast<std::size_t>(a)] = copy(grid, b, fields::wvec, a, zcount(a));
+  for (int a = 0; a < 3; ++a) w[static_cast<std::size_t>(a)] = copy(grid, need.outer, fields::wvec, a, zcount(a));
   for (int a = 0; a < 3; ++a)
-    for (int c = a; c < 3; ++c) g.k_down[static_cast<std::size_t>(pair(a, c))] = make_compact(need, zcount(a) + zcount(c));
+    for (int c = a; c < 3; ++c) g.k_down[static_cast<std::size_t>(pair(a, c))] = make_compact(need.inner, zcount(a) + zcount(c));
   const bool has_w = grid.has_field(fields::wvec);
-  for_needed(need, [&](int i, int j, int k) {
-    const std::size_t p = b.at(i, j, k);
+  for_needed(need.inner, [&](int i, int j, int k) {
+    const auto p = static_cast<std::size_t>(need.outer.slot[b.at(i, j, k)]);
     double dw[3][3] = {};  // dw[a][c] = d_a W^c
     if (has_w)
       for (int a = 0; a < 3; ++a)
@@ -212,16 +224,17 @@ void fill_connection(const Box& b, const Needed& need, Geometry& g) {
     for (int a = 0; a < 3; ++a)
       for (int d = a; d < 3; ++d)
         g.christoffel[static_cast<std::size_t>(c)][static_cast<std::size_t>(pair(a, d))] =
-            make_compact(need, zcount(c) + zcount(a) + zcount(d));
+            make_compact(need.inner, zcount(c) + zcount(a) + zcount(d));
   for (int a = 0; a < 3; ++a)
     for (int c = a; c < 3; ++c) {
-      g.k_up[static_cast<std::size_t>(pair(a, c))] = make_compact(need, zcount(a) + zcount(c));
-      g.sigma[static_cast<std::size_t>(pair(a, c))] = make_compact(need, zcount(a) + zcount(c));
+      g.k_up[static_cast<std::size_t>(pair(a, c))] = make_compact(need.inner, zcount(a) + zcount(c));
+      g.sigma[static_cast<std::size_t>(pair(a, c))] = make_compact(need.inner, zcount(a) + zcount(c));
     }
-  for (int a = 0; a < 3; ++a) g.dalpha[static_cast<std::size_t>(a)] = make_compact(need, zcount(a));
-  g.k_trace = make_compact(need, 0);
-  for_needed(need, [&](int i, int j, int k) {
-    const std::size_t p = b.at(i, j, k), q = static_cast<std::size_t>(need.slot[p]);
+  for (int a = 0; a < 3; ++a) g.dalpha[static_cast<std::size_t>(a)] = make_compact(need.inner, zcount(a));
+  g.k_trace = make_compact(need.inner, 0);
+  for_needed(need.inner, [&](int i, int j, int k) {
+    const std::size_t at = b.at(i, j, k);
+    const auto p = static_cast<std::size_t>(need.outer.slot[at]), q = static_cast<std::size_t>(need.inner.slot[at]);
     const std::array<double, 6> gl = metric_at(g, b, p), gu = inverse(gl);
     double dg[3][6];  // dg[l][pair] = d_l gamma_pair
     for (int l = 0; l < 3; ++l)
@@ -278,7 +291,8 @@ struct PointResiduals {
 
 // The residuals at a point with margin 2.
 PointResiduals residuals_at(const Box& b, const Needed& need, const Geometry& g, double sigma2, int i, int j, int k) {
-  const std::size_t p = b.at(i, j, k), q = static_cast<std::size_t>(need.slot[p]);
+  const std::size_t at = b.at(i, j, k);
+  const auto p = static_cast<std::size_t>(need.outer.slot[at]), q = static_cast<std::size_t>(need.inner.slot[at]);
   const std::array<double, 6> gl = metric_at(g, b, p), gu = inverse(gl);
   auto G = [&](int c, int a, int d) { return g.christoffel[static_cast<std::size_t>(c)][static_cast<std::size_t>(pair(a, d))].v[q]; };
   auto dG = [&](int l, int c, int a, int d) {
@@ -351,38 +365,53 @@ std::vector<std::uint8_t> dilate(const Box& b, std::vector<std::uint8_t> m, int 
   if (w == 0) return m;
   std::vector<std::uint8_t> out(m.size(), 0);
   for (int axis = 0; axis < 3; ++axis) {
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < b.nz; ++k)
-      for (int j = 0; j < b.ny; ++j)
-        for (int i = 0; i < b.nx; ++i) {
-          std::uint8_t v = 0;
-          for (int d = -w; d <= w && !v; ++d) {
-            int ii = i, jj = j, kk = k;
-            (axis == 0 ? ii : axis == 1 ? jj : kk) += d;
-            if (axis == 2 && b.mirror) kk = std::abs(kk);
-            if (ii < 0 || jj < 0 || kk < 0 || ii >= b.nx || jj >= b.ny || kk >= b.nz) continue;
-            v = m[b.at(ii, jj, kk)];
+    const int len = axis == 0 ? b.nx : axis == 1 ? b.ny : b.nz;
+    const int lines_a = axis == 0 ? b.ny : b.nx, lines_b = axis == 2 ? b.ny : b.nz;
+#pragma omp parallel
+    {
+      // A line with its mirror images below z = 0 (z axis, symmetry): index t - lo, t in [lo, len).
+      const int lo = axis == 2 && b.mirror ? -(len - 1) : 0;
+      std::vector<int> count(static_cast<std::size_t>(len - lo) + 1);
+#pragma omp for schedule(static)
+      for (int lb = 0; lb < lines_b; ++lb)
+        for (int la = 0; la < lines_a; ++la) {
+          auto index = [&](int t) {
+            const int tt = std::abs(t);
+            return axis == 0 ? b.at(tt, la, lb) : axis == 1 ? b.at(la, tt, lb) : b.at(la, lb, tt);
+          };
+          count[0] = 0;
+          for (int t = lo; t < len; ++t) count[static_cast<std::size_t>(t - lo) + 1] = count[static_cast<std::size_t>(t - lo)] + (m[index(t)] ? 1 : 0);
+          for (int t = 0; t < len; ++t) {
+            const int a0 = std::max(lo, t - w), a1 = std::min(len - 1, t + w);
+            out[index(t)] = count[static_cast<std::size_t>(a1 - lo) + 1] > count[static_cast<std::size_t>(a0 - lo)] ? 1 : 0;
           }
-          out[b.at(i, j, k)] = v;
         }
+    }
     std::swap(m, out);
   }
   return m;
 }
 
-// Points near the puncture: the excision mask (or the cube of the rule max(M/2, 3 dx)) widened by
-// `cells`.
-std::vector<std::uint8_t> puncture_region(const Grid& grid, const Box& b, const Inputs& in) {
-  std::vector<std::uint8_t> near(b.size(), 0);
-  if (!in.puncture) return near;
-  std::vector<std::uint8_t> core(b.size(), 0);
+// The puncture's region: the bounding box of the excision mask (a cube; without a shift, the cube
+// of side max(M/2, 3 dx) about the hole) widened by `exclude_cells` points; below z = 0 by symmetry.
+struct PunctureRegion {
+  bool any = false;
+  int lo[3] = {0, 0, 0}, hi[3] = {-1, -1, -1};
+  bool contains(int i, int j, int k) const {
+    return any && i >= lo[0] && i <= hi[0] && j >= lo[1] && j <= hi[1] && k >= lo[2] && k <= hi[2];
+  }
+};
+
+PunctureRegion puncture_region(const Grid& grid, const Box& b, const Inputs& in) {
+  PunctureRegion r;
+  if (!in.puncture) return r;
   const Level& lv = grid.finest();
   int mask = -1;
   if (grid.has_field(fields::shift)) {
     try {
       mask = grid.mask_id(fields::excision_mask);
-    } catch (...) {
-      mask = -1;
+    } catch (const std::exception&) {
+      mask = -1;  // a shift without a hole has no excision mask
     }
   }
   const double half = 0.5 * std::max(0.5 * in.bare_mass, 3.0 * b.dx) + 1e-12 * b.dx;
@@ -397,24 +426,33 @@ std::vector<std::uint8_t> puncture_region(const Grid& grid, const Box& b, const 
                                      std::fabs(b.z0 + b.dx * k - in.position[2])});
           in_core = d <= half;
         }
-        core[b.at(i, j, k)] = in_core;
+        if (!in_core) continue;
+        const int idx[3] = {i, j, k};
+        for (int a = 0; a < 3; ++a) {
+          r.lo[a] = r.any ? std::min(r.lo[a], idx[a]) : idx[a];
+          r.hi[a] = r.any ? std::max(r.hi[a], idx[a]) : idx[a];
+        }
+        r.any = true;
       }
-  near = dilate(b, std::move(core), in.exclude_cells);
-  return near;
+  if (b.mirror && r.any && r.lo[2] == 0) r.lo[2] = -r.hi[2];  // the mirror image continues the box
+  for (int a = 0; a < 3; ++a) r.lo[a] -= in.exclude_cells, r.hi[a] += in.exclude_cells;
+  return r;
 }
 
-// Points within `cells` of the star's surface (a rho0 > 0 point next to a rho0 = 0 one).
-std::vector<std::uint8_t> surface_band(const Box& b, const Geometry& g, int cells) {
-  std::vector<std::uint8_t> edge(b.size(), 0), band;
-  auto matter = [&](int i, int j, int k) { return get(b, g.rho0, i, j, k) > 0; };
+// Points within `cells` of the star's surface (a rho0 > 0 point next to a rho0 = 0 one), from the
+// grid's density at every point.
+std::vector<std::uint8_t> surface_band(const Grid& grid, const Box& b, int cells) {
+  std::vector<std::uint8_t> edge(b.size(), 0);
+  const Level& lv = grid.finest();
+  const double* rho0 = grid.data(grid.field_id(fields::rho0), 0, 0);
+  auto matter = [&](int i, int j, int k) { return rho0[lv.at(i, j, std::abs(k))] > 0; };
   for_points(b, 1, [&](int i, int j, int k) {
     const bool m = matter(i, j, k);
     if (m != matter(i + 1, j, k) || m != matter(i - 1, j, k) || m != matter(i, j + 1, k) || m != matter(i, j - 1, k) ||
         m != matter(i, j, k + 1) || m != matter(i, j, k - 1))
       edge[b.at(i, j, k)] = 1;
   });
-  band = dilate(b, std::move(edge), cells);
-  return band;
+  return dilate(b, std::move(edge), cells);
 }
 
 struct Accumulator {
@@ -436,14 +474,15 @@ std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.10e}", 
 Result evaluate(const Grid& grid, const Inputs& in) {
   const Level& lv = grid.finest();
   const Box b(lv);
+  const Needed need = needed_points(b, in.stride);
   Geometry g;
   Field phi;
-  fill_point_fields(grid, b, in, g, phi);
-  const Needed need = needed_points(b, in.stride);
+  fill_point_fields(grid, b, in, need, g, phi);
   fill_extrinsic(grid, b, in, phi, need, g);
   fill_connection(b, need, g);
-  const std::vector<std::uint8_t> near = puncture_region(grid, b, in);
-  const std::vector<std::uint8_t> band = in.fluid ? surface_band(b, g, in.surface_cells) : std::vector<std::uint8_t>(b.size(), 0);
+  const PunctureRegion near = puncture_region(grid, b, in);
+  const std::vector<std::uint8_t> band = in.fluid ? surface_band(grid, b, in.surface_cells) : std::vector<std::uint8_t>(b.size(), 0);
+
   const double sigma2 = in.sigma * in.sigma;
   const bool bernoulli = in.fluid && std::isfinite(in.bernoulli);
 
@@ -469,11 +508,11 @@ Result evaluate(const Grid& grid, const Inputs& in) {
             if (on_axis) axis_rows[static_cast<std::size_t>(i)] = fmt::format("{:.10g}\tnan\tnan\tnan\tnan\tnan\tnan\tnan\tnan\tnan\t-\n", b.x0 + b.dx * i);
             continue;
           }
-          const std::size_t p = b.at(i, j, k);
+          const std::size_t p = b.at(i, j, k), po = static_cast<std::size_t>(need.outer.slot[p]);
           const PointResiduals r = residuals_at(b, need, g, sigma2, i, j, k);
-          const bool matter = g.rho0.v[p] > 0;
-          const double bern = bernoulli && matter ? g.enthalpy.v[p] * g.alpha.v[p] / g.lorentz.v[p] - in.bernoulli : nan;
-          const int region = near[p] ? 2 : band[p] ? 1 : 0;
+          const bool matter = g.rho0.v[po] > 0;
+          const double bern = bernoulli && matter ? g.enthalpy.v[po] * g.alpha.v[po] / g.lorentz.v[po] - in.bernoulli : nan;
+          const int region = near.contains(i, j, k) ? 2 : band[p] ? 1 : 0;
           local[0][static_cast<std::size_t>(region)].add(&r.hamiltonian, 1);
           local[1][static_cast<std::size_t>(region)].add(r.momentum, 3);
           local[2][static_cast<std::size_t>(region)].add(&r.lapse, 1);
