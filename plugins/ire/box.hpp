@@ -5,6 +5,7 @@
 // Christoffel symbols alike (no time reversal is involved in the equatorial reflection).
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "bhnsid/interfaces/grid.hpp"
@@ -34,7 +35,9 @@ struct Box {
 /// One component on the box; zsign is its parity under z -> -z. A field with `slot` holds values
 /// only at some points (the derived quantities where the residuals need them): v[slot[at(i, j, k)]].
 struct Field {
-  std::vector<double> v;
+  // Not zero-filled on allocation: every value is written by the fill that creates it, in parallel,
+  // so the pages are touched once (fresh memory is slow to touch the first time on our VMs).
+  std::unique_ptr<double[]> v;
   double zsign = 1;
   const std::vector<std::int32_t>* slot = nullptr;
   double& at(const Box& b, int i, int j, int k) {

@@ -49,9 +49,9 @@ Needed needed_points(const Box& b, int stride) {
   Needed n;
   n.inner.slot.assign(b.size(), -1);
   n.outer.slot.assign(b.size(), -1);
-  for (int k = 0; k < b.nz; ++k)
-    for (int j = 0; j < b.ny; ++j)
-      for (int i = 0; i < b.nx; ++i)
+  for (int k = 0; k < b.nz; k += stride)
+    for (int j = 0; j < b.ny; j += stride)
+      for (int i = 0; i < b.nx; i += stride)
         if (sampled(b, stride, i, j, k))
           for (const auto& o : kStar) n.inner.add(b, i + o[0], j + o[1], std::abs(k + o[2]));
   for (const auto& p : n.inner.points)
@@ -59,19 +59,30 @@ Needed needed_points(const Box& b, int stride) {
   return n;
 }
 
-Field make_compact(const PointSet& n, int z_indices) {
-  return Field{std::vector<double>(n.points.size(), 0.0), zparity(z_indices), &n.slot};
+// A field on the points of a set; `zero`: filled with zeros (in parallel, which is also where its
+// pages are first touched), otherwise left for a fill that writes every value.
+Field make_compact(const PointSet& n, int z_indices, bool zero = true) {
+  Field f{std::make_unique_for_overwrite<double[]>(n.points.size()), zparity(z_indices), &n.slot};
+  if (zero) {
+    const auto count = static_cast<std::ptrdiff_t>(n.points.size());
+    double* v = f.v.get();
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t q = 0; q < count; ++q) v[q] = 0.0;
+  }
+  return f;
 }
 
 // One grid component copied onto the points of a set (zero where the grid has no such field).
 Field copy(const Grid& grid, const PointSet& set, const char* name, int comp, int z_indices) {
-  Field f = make_compact(set, z_indices);
-  if (!grid.has_field(name)) return f;
+  if (!grid.has_field(name)) return make_compact(set, z_indices);
+  Field f = make_compact(set, z_indices, false);
   const Level& lv = grid.finest();
   const double* src = grid.data(grid.field_id(name), comp, 0);
-  for (std::size_t q = 0; q < set.points.size(); ++q) {
-    const auto& p = set.points[q];
-    f.v[q] = src[lv.at(p[0], p[1], p[2])];
+  const auto count = static_cast<std::ptrdiff_t>(set.points.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t q = 0; q < count; ++q) {
+    const auto& p = set.points[static_cast<std::size_t>(q)];
+    f.v[static_cast<std::size_t>(q)] = src[lv.at(p[0], p[1], p[2])];
   }
   return f;
 }
@@ -108,6 +119,7 @@ void for_points(const Box& b, int margin, Fn&& fn) {
 }
 
 struct Geometry {
+  Field chi, eta;  // the solution's regular part of phi and eta = alpha phi, at the outer points
   Field alpha, rho_e, trace_s, lorentz, enthalpy, rho0;
   std::array<Field, 3> beta_up, beta_down, j_up, dalpha;
   std::array<Field, 6> gamma, k_down, k_up, sigma;
@@ -122,33 +134,35 @@ std::array<double, 6> metric_at(const Geometry& g, const Box& b, std::size_t p) 
 
 // The point values: phi, alpha, beta, gamma = phi^4 delta, the matter (hatted units).
 void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, const Needed& need, Geometry& g, Field& phi) {
-  const PointSet& set = need.outer;
-  const Field chi = copy(grid, set, fields::chi, 0, 0), eta = copy(grid, set, fields::eta, 0, 0);
+  // The metric, lapse and shift are differenced (outer points); the matter only enters at the
+  // points where the residuals are evaluated (inner points suffice).
+  const PointSet &set = need.outer, &inner = need.inner;
+  g.chi = copy(grid, set, fields::chi, 0, 0);
+  g.eta = copy(grid, set, fields::eta, 0, 0);
+  const Field& chi = g.chi;
+  const Field& eta = g.eta;
   for (int a = 0; a < 3; ++a) g.beta_up[static_cast<std::size_t>(a)] = copy(grid, set, fields::shift, a, zcount(a));
-  phi = make_compact(set, 0);
-  g.alpha = make_compact(set, 0);
+  phi = make_compact(set, 0, false);
+  g.alpha = make_compact(set, 0, false);
   for (int p = 0; p < 6; ++p) g.gamma[static_cast<std::size_t>(p)] = make_compact(set, (p == 2 || p == 4) ? 1 : 0);
-  g.rho_e = make_compact(set, 0);
-  g.trace_s = make_compact(set, 0);
-  g.lorentz = make_compact(set, 0);
-  g.rho0 = make_compact(set, 0);
-  g.enthalpy = make_compact(set, 0);
-  for (int a = 0; a < 3; ++a) {
-    g.j_up[static_cast<std::size_t>(a)] = make_compact(set, zcount(a));
-    g.beta_down[static_cast<std::size_t>(a)] = make_compact(set, zcount(a));
-  }
-  Field rho0, press, enthalpy;
+  for (int a = 0; a < 3; ++a) g.beta_down[static_cast<std::size_t>(a)] = make_compact(set, zcount(a), false);
+  g.rho_e = make_compact(inner, 0);
+  g.trace_s = make_compact(inner, 0);
+  g.lorentz = make_compact(inner, 0);
+  for (int a = 0; a < 3; ++a) g.j_up[static_cast<std::size_t>(a)] = make_compact(inner, zcount(a));
+  g.rho0 = copy(grid, inner, fields::rho0, 0, 0);
+  g.enthalpy = copy(grid, inner, fields::enthalpy, 0, 0);
+  Field press;
   std::array<Field, 3> velocity;
   if (in.fluid) {
-    rho0 = copy(grid, set, fields::rho0, 0, 0);
-    press = copy(grid, set, fields::press, 0, 0);
-    enthalpy = copy(grid, set, fields::enthalpy, 0, 0);
+    press = copy(grid, inner, fields::press, 0, 0);
     for (int a = 0; a < 3; ++a)
       velocity[static_cast<std::size_t>(a)] =
-          in.moving ? copy(grid, set, fields::fluid_velocity, a, zcount(a)) : make_compact(set, zcount(a));
+          in.moving ? copy(grid, inner, fields::fluid_velocity, a, zcount(a)) : make_compact(inner, zcount(a));
   }
   for_needed(set, [&](int i, int j, int k) {
-    const auto p = static_cast<std::size_t>(set.slot[b.at(i, j, k)]);
+    const std::size_t at = b.at(i, j, k);
+    const auto p = static_cast<std::size_t>(set.slot[at]);
     double ph = chi.v[p];
     if (in.puncture) {
       const double dx = b.x0 + b.dx * i - in.position[0], dy = b.y0 + b.dx * j - in.position[1],
@@ -160,33 +174,34 @@ void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, const N
     g.alpha.v[p] = al;
     g.gamma[0].v[p] = g.gamma[3].v[p] = g.gamma[5].v[p] = psi4;
     for (int a = 0; a < 3; ++a) g.beta_down[static_cast<std::size_t>(a)].v[p] = psi4 * g.beta_up[static_cast<std::size_t>(a)].v[p];
-    g.lorentz.v[p] = 1;
+    if (inner.slot[at] < 0) return;
+    const auto q = static_cast<std::size_t>(inner.slot[at]);
+    g.lorentz.v[q] = 1;
     if (!in.fluid) return;
     // Eulerian 3-velocity v^i = (beta^i + V^i)/alpha, W = 1/sqrt(1 - gamma_ij v^i v^j).
     double v[3], v2 = 0;
     for (int a = 0; a < 3; ++a) {
-      v[a] = (g.beta_up[static_cast<std::size_t>(a)].v[p] + velocity[static_cast<std::size_t>(a)].v[p]) / al;
+      v[a] = (g.beta_up[static_cast<std::size_t>(a)].v[p] + velocity[static_cast<std::size_t>(a)].v[q]) / al;
       v2 += psi4 * v[a] * v[a];
     }
     if (!in.moving) v2 = 0, v[0] = v[1] = v[2] = 0;
-    const double w2 = 1.0 / (1.0 - v2), rh = rho0.v[p] * enthalpy.v[p];
-    g.lorentz.v[p] = std::sqrt(w2);
-    g.rho0.v[p] = rho0.v[p];
-    g.enthalpy.v[p] = enthalpy.v[p];
-    g.rho_e.v[p] = rh * w2 - press.v[p];
-    g.trace_s.v[p] = rh * w2 * v2 + 3.0 * press.v[p];
-    for (int a = 0; a < 3; ++a) g.j_up[static_cast<std::size_t>(a)].v[p] = rh * w2 * v[a];
+    const double w2 = 1.0 / (1.0 - v2), rh = g.rho0.v[q] * g.enthalpy.v[q];
+    g.lorentz.v[q] = std::sqrt(w2);
+    g.rho_e.v[q] = rh * w2 - press.v[q];
+    g.trace_s.v[q] = rh * w2 * v2 + 3.0 * press.v[q];
+    for (int a = 0; a < 3; ++a) g.j_up[static_cast<std::size_t>(a)].v[q] = rh * w2 * v[a];
   });
 }
 
 // K_ij = phi^-2 Ahat_ij, Ahat = Bowen-York + Zhat, Zhat^ij = chi^7/(2 eta) (LW)^ij with the box's
 // own D0 of W (margin 1).
 void fill_extrinsic(const Grid& grid, const Box& b, const Inputs& in, const Field& phi, const Needed& need, Geometry& g) {
-  const Field chi = copy(grid, need.outer, fields::chi, 0, 0), eta = copy(grid, need.outer, fields::eta, 0, 0);
+  const Field& chi = g.chi;
+  const Field& eta = g.eta;
   std::array<Field, 3> w;
   for (int a = 0; a < 3; ++a) w[static_cast<std::size_t>(a)] = copy(grid, need.outer, fields::wvec, a, zcount(a));
   for (int a = 0; a < 3; ++a)
-    for (int c = a; c < 3; ++c) g.k_down[static_cast<std::size_t>(pair(a, c))] = make_compact(need.inner, zcount(a) + zcount(c));
+    for (int c = a; c < 3; ++c) g.k_down[static_cast<std::size_t>(pair(a, c))] = make_compact(need.inner, zcount(a) + zcount(c), false);
   const bool has_w = grid.has_field(fields::wvec);
   for_needed(need.inner, [&](int i, int j, int k) {
     const auto p = static_cast<std::size_t>(need.outer.slot[b.at(i, j, k)]);
@@ -224,14 +239,14 @@ void fill_connection(const Box& b, const Needed& need, Geometry& g) {
     for (int a = 0; a < 3; ++a)
       for (int d = a; d < 3; ++d)
         g.christoffel[static_cast<std::size_t>(c)][static_cast<std::size_t>(pair(a, d))] =
-            make_compact(need.inner, zcount(c) + zcount(a) + zcount(d));
+            make_compact(need.inner, zcount(c) + zcount(a) + zcount(d), false);
   for (int a = 0; a < 3; ++a)
     for (int c = a; c < 3; ++c) {
-      g.k_up[static_cast<std::size_t>(pair(a, c))] = make_compact(need.inner, zcount(a) + zcount(c));
-      g.sigma[static_cast<std::size_t>(pair(a, c))] = make_compact(need.inner, zcount(a) + zcount(c));
+      g.k_up[static_cast<std::size_t>(pair(a, c))] = make_compact(need.inner, zcount(a) + zcount(c), false);
+      g.sigma[static_cast<std::size_t>(pair(a, c))] = make_compact(need.inner, zcount(a) + zcount(c), false);
     }
-  for (int a = 0; a < 3; ++a) g.dalpha[static_cast<std::size_t>(a)] = make_compact(need.inner, zcount(a));
-  g.k_trace = make_compact(need.inner, 0);
+  for (int a = 0; a < 3; ++a) g.dalpha[static_cast<std::size_t>(a)] = make_compact(need.inner, zcount(a), false);
+  g.k_trace = make_compact(need.inner, 0, false);
   for_needed(need.inner, [&](int i, int j, int k) {
     const std::size_t at = b.at(i, j, k);
     const auto p = static_cast<std::size_t>(need.outer.slot[at]), q = static_cast<std::size_t>(need.inner.slot[at]);
@@ -314,7 +329,7 @@ PointResiduals residuals_at(const Box& b, const Needed& need, const Geometry& g,
   for (int a = 0; a < 3; ++a)
     for (int c = 0; c < 3; ++c)
       kk += g.k_down[static_cast<std::size_t>(pair(a, c))].v[q] * g.k_up[static_cast<std::size_t>(pair(a, c))].v[q];
-  const double trace = g.k_trace.v[q], rho_e = g.rho_e.v[p];
+  const double trace = g.k_trace.v[q], rho_e = g.rho_e.v[q];
   PointResiduals out{};
   out.hamiltonian = ricci + trace * trace - kk - 16.0 * pi * sigma2 * rho_e;
   double dtrace[3];
@@ -329,7 +344,7 @@ PointResiduals residuals_at(const Box& b, const Needed& need, const Geometry& g,
              G(c, c, e) * g.k_up[static_cast<std::size_t>(pair(a, e))].v[q];
       s -= up(a, c) * dtrace[c];
     }
-    out.momentum[a] = s - 8.0 * pi * sigma2 * g.j_up[static_cast<std::size_t>(a)].v[p];
+    out.momentum[a] = s - 8.0 * pi * sigma2 * g.j_up[static_cast<std::size_t>(a)].v[q];
   }
   // d_t K = -D^2 alpha + alpha (R + K^2 + 4 pi sigma^2 (S - 3 rho_E)) + beta^k d_k K, with the second
   // derivatives of alpha as D0 of D0 alpha (symmetrised).
@@ -343,7 +358,7 @@ PointResiduals residuals_at(const Box& b, const Needed& need, const Geometry& g,
   double advect = 0;
   for (int a = 0; a < 3; ++a) advect += g.beta_up[static_cast<std::size_t>(a)].v[p] * dtrace[a];
   const double al = g.alpha.v[p];
-  out.lapse = -lap_alpha + al * (ricci + trace * trace + 4.0 * pi * sigma2 * (g.trace_s.v[p] - 3.0 * rho_e)) + advect;
+  out.lapse = -lap_alpha + al * (ricci + trace * trace + 4.0 * pi * sigma2 * (g.trace_s.v[q] - 3.0 * rho_e)) + advect;
   // D^c Sigma_ac = gamma^cd (d_d Sigma_ac - Gamma^e_da Sigma_ec - Gamma^e_dc Sigma_ae)
   auto S = [&](int a, int c) { return g.sigma[static_cast<std::size_t>(pair(a, c))].v[q]; };
   for (int a = 0; a < 3; ++a) {
@@ -508,10 +523,11 @@ Result evaluate(const Grid& grid, const Inputs& in) {
             if (on_axis) axis_rows[static_cast<std::size_t>(i)] = fmt::format("{:.10g}\tnan\tnan\tnan\tnan\tnan\tnan\tnan\tnan\tnan\t-\n", b.x0 + b.dx * i);
             continue;
           }
-          const std::size_t p = b.at(i, j, k), po = static_cast<std::size_t>(need.outer.slot[p]);
+          const std::size_t p = b.at(i, j, k), po = static_cast<std::size_t>(need.outer.slot[p]),
+                            pi = static_cast<std::size_t>(need.inner.slot[p]);
           const PointResiduals r = residuals_at(b, need, g, sigma2, i, j, k);
-          const bool matter = g.rho0.v[po] > 0;
-          const double bern = bernoulli && matter ? g.enthalpy.v[po] * g.alpha.v[po] / g.lorentz.v[po] - in.bernoulli : nan;
+          const bool matter = g.rho0.v[pi] > 0;
+          const double bern = bernoulli && matter ? g.enthalpy.v[pi] * g.alpha.v[po] / g.lorentz.v[pi] - in.bernoulli : nan;
           const int region = near.contains(i, j, k) ? 2 : band[p] ? 1 : 0;
           local[0][static_cast<std::size_t>(region)].add(&r.hamiltonian, 1);
           local[1][static_cast<std::size_t>(region)].add(r.momentum, 3);
