@@ -17,8 +17,8 @@
 // is not a pure monopole (the ball's dipole, a boosted puncture's chi and eta converged at first
 // order with r_c fixed). The interpolation windows are 3 consecutive indices that contain x_b's own
 // index and both targets (shifted toward the centre where the targets are more than half a cell
-// off), so no row reaches beyond 4 consecutive indices per axis: the coarse solver's colouring
-// (mod 4) relies on that. The literal form with one-sided normal derivatives and centred tangential
+// off), so no row reaches further than 2 indices from its own per axis: the coarse solver's
+// colouring (mod 5) relies on that. The literal form with one-sided normal derivatives and centred tangential
 // ones (§5.2) was tried first: its rows are not diagonally dominant and red-black Gauss-Seidel on
 // them diverged (residual x1.4 per sweep). Here each row fixes u_b from other values with weights
 // summing to (4 s_1 - s_2)/3 < 1, so relaxing the rows converges. The rows are equations of the FAS

@@ -57,21 +57,22 @@ void CoarseSolver::factorise(int level, const Eigen::VectorXd& r0) {
   std::vector<Eigen::Triplet<double>> entries;
   Eigen::VectorXd r1;
   std::vector<double> step(unknowns_.size());
-  // Every row depends on at most 4 consecutive indices per axis (interior: +-1; Robin rows: the
-  // inward points 0..2 along the normal and a 3-point window next to their own index along the
-  // faces, boundary_rows.hpp), all inside the window starting at index - 2, clamped to the level:
-  // exactly one point of each residue class mod 4 lies in it, which identifies the column a
+  // Every row depends only on indices within 2 of its own per axis (interior: +-1; Robin rows: the
+  // inward points 0..2 along the normal and a 3-point window about their own index, shifted by one
+  // toward the centre where the ray's targets are more than half a cell off, along the faces;
+  // boundary_rows.hpp), all inside the window of 5 starting at index - 2, clamped to the level:
+  // exactly one point of each residue class mod 5 lies in it, which identifies the column a
   // changed row belongs to.
-  auto window_start = [&](int index, int axis) { return std::max(0, std::min(index - 2, last[axis] - 3)); };
+  auto window_start = [&](int index, int axis) { return std::max(0, std::min(index - 2, last[axis] - 4)); };
   for (std::size_t si = 0; si < solver_.slots_.size(); ++si) {
     const Slot& s = solver_.slots_[si];
     for (int c = 0; c < s.ncomp; ++c)
-      for (int colour = 0; colour < 64; ++colour) {
-        const int ci = colour % 4, cj = (colour / 4) % 4, ck = colour / 16;
+      for (int colour = 0; colour < 125; ++colour) {
+        const int ci = colour % 5, cj = (colour / 5) % 5, ck = colour / 25;
         bool any = false;
         for (std::size_t r = 0; r < unknowns_.size(); ++r) {
           const Unknown& x = unknowns_[r];
-          if (x.slot != static_cast<int>(si) || x.comp != c || x.i % 4 != ci || x.j % 4 != cj || x.k % 4 != ck) continue;
+          if (x.slot != static_cast<int>(si) || x.comp != c || x.i % 5 != ci || x.j % 5 != cj || x.k % 5 != ck) continue;
           double* u = value(x, level, false);
           step[r] = 1e-7 * std::max(1.0, std::fabs(*u));
           *u += step[r];
@@ -89,7 +90,7 @@ void CoarseSolver::factorise(int level, const Eigen::VectorXd& r0) {
           int col_index[3];
           for (int a = 0; a < 3; ++a) {
             int v = window_start(idx[a], a);
-            while (v % 4 != want[a]) ++v;
+            while (v % 5 != want[a]) ++v;
             col_index[a] = v;
           }
           if (col_index[2] < 0 || col_index[2] > last[2] || col_index[0] > last[0] || col_index[1] > last[1]) continue;
@@ -101,7 +102,7 @@ void CoarseSolver::factorise(int level, const Eigen::VectorXd& r0) {
         }
         for (std::size_t r = 0; r < unknowns_.size(); ++r) {
           const Unknown& x = unknowns_[r];
-          if (x.slot != static_cast<int>(si) || x.comp != c || x.i % 4 != ci || x.j % 4 != cj || x.k % 4 != ck) continue;
+          if (x.slot != static_cast<int>(si) || x.comp != c || x.i % 5 != ci || x.j % 5 != cj || x.k % 5 != ck) continue;
           *value(x, level, false) -= step[r];
         }
         solver_.fill_ghosts(level, 0);

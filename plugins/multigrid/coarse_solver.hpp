@@ -1,7 +1,8 @@
 #pragma once
 // The coarsest level solved directly: Newton's method on all equations at once, with the Jacobian
-// of the discrete residual built by finite-difference probing (27 colours: points 3 apart in every
-// direction never share a row, since no row reaches further than 2 points) and factorised by
+// of the discrete residual built by finite-difference probing (125 colours: a row depends only on
+// points within 2 of its own per axis, a window of 5 with one point per residue class mod 5, so
+// each changed row names the probed column) and factorised by
 // Eigen's SparseLU. The factorisation is kept and reused (a chord iteration) while it still
 // converges fast; the problem is tiny, so every solve ends at round-off.
 #include <Eigen/SparseLU>
