@@ -101,7 +101,13 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
     if (e != "hamiltonian" && e != "momentum" && e != "lapse" && e != "shift")
       throw InputError(fmt::format("validate: --only {}: expected hamiltonian, momentum, lapse or shift", e));
   PluginLoader loader(plugin_search_path(common.plugin_dirs));
-  const Configuration config = configure(parfile, common.overrides, loader);  // input errors surface here, once
+  // Input errors surface here, once, before any run. `ire.*` overrides are checked here only when
+  // the file lists ire; otherwise validate adds the plugin and the first run checks them.
+  std::vector<std::string> checked;
+  for (const std::string& o : common.overrides)
+    if (o.rfind("ire.", 0) != 0) checked.push_back(o);
+  Configuration config = configure(parfile, checked, loader);
+  if (config.params.count("ire")) config = configure(parfile, common.overrides, loader);
   if (!config.params.count("grid"))
     throw InputError(fmt::format("{}: validate needs the grid plugin (grid.n, grid.dx)", parfile));
   const int n = static_cast<int>(config.params.at("grid").integer("n"));
@@ -110,6 +116,23 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
   if (config.params.count("ire")) {
     exclude = static_cast<int>(config.params.at("ire").integer("exclude_cells"));
     surface = static_cast<int>(config.params.at("ire").integer("surface_cells"));
+  } else {
+    // ire is added below; its region widths may still come from --set (in points of the coarsest run).
+    for (const std::string& o : common.overrides)
+      for (auto [key, target] : {std::pair<const char*, int*>{"ire.exclude_cells=", &exclude}, {"ire.surface_cells=", &surface}})
+        if (o.rfind(key, 0) == 0) {
+          const std::string value = o.substr(std::strlen(key));
+          std::size_t used = 0;
+          int v = -1;
+          try {
+            v = std::stoi(value, &used);
+          } catch (const std::exception&) {
+            used = 0;
+          }
+          if (used != value.size() || v < 0)
+            throw InputError(fmt::format("--set {}: expected an integer >= 0 for {}", o, std::string(key, std::strlen(key) - 1)));
+          *target = v;
+        }
   }
   const fs::path dir = opt.output.empty() ? fs::path("runs") / (fs::path(parfile).stem().string() + "_validate") : fs::path(opt.output);
   if (fs::exists(dir)) {
