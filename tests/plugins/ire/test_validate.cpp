@@ -137,6 +137,7 @@ TEST_CASE("plugins.ire.validate_refuses_bad_input", "[plugins][ire]") {
       {{"--levels", "1"}, "--levels 1"},
       {{"--only", "bernoulli"}, "--only bernoulli"},
       {{"--set", "grid.dx=-1"}, "grid.dx"},
+      {{"--set", "ire.surface_cells=x"}, "ire.surface_cells"},  // ire is added by validate, its keys still checked
   };
   for (const Case& c : cases) {
     const Validated v = validate(dir, ss, {}, c.args);
