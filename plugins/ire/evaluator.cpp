@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -18,7 +18,6 @@ constexpr double pi = std::numbers::pi;
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 int zcount(int a) { return a == 2 ? 1 : 0; }
-
 
 // A set of points of the box, each with a slot in the compact arrays of the fields stored there.
 struct PointSet {
@@ -97,8 +96,6 @@ void for_needed(const PointSet& n, Fn&& fn) {
     fn(p[0], p[1], p[2]);
   }
 }
-
-
 
 // The inverse of a symmetric 3x3 matrix given as xx, xy, xz, yy, yz, zz.
 std::array<double, 6> inverse(const std::array<double, 6>& g) {
@@ -505,7 +502,7 @@ Result evaluate(const Grid& grid, const Inputs& in) {
   out.equations = {"hamiltonian", "momentum", "lapse", "shift"};
   if (bernoulli) out.equations.push_back("bernoulli");
   const std::size_t ne = out.equations.size();
-  // Per equation and region (0 away, 1 surface, 2 puncture), accumulated per plane then summed.
+  // Per equation and region (0 away, 1 surface, 2 puncture), accumulated per thread, then summed.
   std::vector<std::array<Accumulator, 3>> total(ne);
   const int jaxis = static_cast<int>(std::lround(-b.y0 / b.dx));
   const int kaxis = static_cast<int>(std::lround(-b.z0 / b.dx));
