@@ -33,11 +33,6 @@
 
 namespace bhnsid::multigrid {
 
-struct RobinRow {
-  double u_inf = 0;
-  std::array<double, 3> centre{};
-};
-
 /// The rows of every face point of a level, stored compactly (weights that vanish are dropped):
 /// row r says u[point[r]] - u_inf = sum over e in [begin[r], begin[r+1]) of weight[e] (u[index[e]] - u_inf).
 struct RobinRows {

@@ -31,7 +31,7 @@ void CoarseSolver::index_unknowns(int level) {
           for (int i = 0; i < lv.nx; ++i) {
             const std::ptrdiff_t p = lv.at(i, j, k);
             if (fixed && fixed[p]) continue;
-            if (lv.on_outer_face(i, j, k) && s.robin.empty()) continue;  // Dirichlet rows
+            if (lv.on_outer_face(i, j, k) && s.rows < 0) continue;  // Dirichlet rows
             unknowns_.push_back(Unknown{static_cast<int>(si), c, p, i, j, k});
           }
   }

@@ -53,7 +53,6 @@ FasSolver::FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations
       if (s.boundary.u_inf.size() != static_cast<std::size_t>(s.ncomp))
         throw RunFailure(fmt::format("multigrid: equation '{}' gives {} asymptotic values for {} components", s.name,
                                      s.boundary.u_inf.size(), s.ncomp));
-      for (int c = 0; c < s.ncomp; ++c) s.robin.push_back(RobinRow{s.boundary.u_inf[static_cast<std::size_t>(c)], s.boundary.centre});
       const auto known = std::find(row_centres_.begin(), row_centres_.end(), s.boundary.centre);
       s.rows = static_cast<int>(known - row_centres_.begin());
       if (known == row_centres_.end()) {
@@ -105,7 +104,7 @@ void FasSolver::smooth(int l, int sweeps) {
         if (s.rows != static_cast<int>(set)) continue;
         const RelaxArgs a = args(s, l);
         for (int c = 0; c < s.ncomp; ++c)
-          targets.push_back(RobinTarget{grid_.data(s.u, c, l), s.robin[static_cast<std::size_t>(c)].u_inf,
+          targets.push_back(RobinTarget{grid_.data(s.u, c, l), s.boundary.u_inf[static_cast<std::size_t>(c)],
                                         a.rhs ? a.rhs[c] : nullptr, a.fixed});
       }
       robin_relax(row_sets_[set][static_cast<std::size_t>(l)], targets);
@@ -134,10 +133,10 @@ void FasSolver::residual(int l) {
     s.eq->residual(a, out.data());
     for (int c = 0; c < s.ncomp; ++c) {
       const double* rhs = a.rhs ? a.rhs[c] : nullptr;
-      if (s.robin.empty())
+      if (s.rows < 0)
         zero_faces(lv, out[static_cast<std::size_t>(c)]);
       else
-        robin_residual(rows(s, l), s.robin[static_cast<std::size_t>(c)].u_inf,
+        robin_residual(rows(s, l), s.boundary.u_inf[static_cast<std::size_t>(c)],
                        grid_.data(s.u, c, l), rhs, a.fixed, out[static_cast<std::size_t>(c)]);
     }
   }
@@ -167,10 +166,10 @@ void FasSolver::descend(int l) {
       double* f = grid_.data(s.rhs, c, cl);
       const double* r = grid_.data(s.res, c, l);
       // rhs_H = L_H(u_H) + FW(r_h): the FAS right-hand side.
-      restrict_full_weighting_minus(fine, coarse, r, minus_lu[static_cast<std::size_t>(c)], f, !s.robin.empty());
-      if (!s.robin.empty()) {
+      restrict_full_weighting_minus(fine, coarse, r, minus_lu[static_cast<std::size_t>(c)], f, s.rows >= 0);
+      if (s.rows >= 0) {
         // Boundary rows: rhs = B(u_H) + injected fine residual; robin_residual with no rhs gives -B.
-        robin_residual(rows(s, cl), s.robin[static_cast<std::size_t>(c)].u_inf,
+        robin_residual(rows(s, cl), s.boundary.u_inf[static_cast<std::size_t>(c)],
                        grid_.data(s.u, c, cl), nullptr, fixed, f);
         for_face_points(coarse, [&](int i, int j, int k) {
           const std::ptrdiff_t p = coarse.at(i, j, k);
@@ -191,7 +190,7 @@ void FasSolver::correct(int l, bool cubic) {
     for (int c = 0; c < s.ncomp; ++c)
       (cubic ? prolong_correction_cubic : prolong_correction)(grid_.level(cl), grid_.level(l), grid_.data(s.u, c, cl),
                                                               grid_.data(s.old, c, cl), grid_.data(s.u, c, l), fixed,
-                                                              !s.robin.empty());
+                                                              s.rows >= 0);
   }
   fill_ghosts(l, unknowns);
 }

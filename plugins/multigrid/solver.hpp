@@ -61,7 +61,6 @@ struct Slot {
   int ncomp = 1;
   std::vector<Parity> parity;
   OuterBoundary boundary;
-  std::vector<RobinRow> robin;                  // per component; empty for Dirichlet
   int rows = -1;                                // index into FasSolver::row_sets_; -1 for Dirichlet
   int mask = -1;
   std::vector<int> coefficients;

@@ -9,6 +9,7 @@
 
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
+#include "grid_fill.hpp"
 #include "hierarchy.hpp"
 #include "integrals.hpp"
 #include "surface.hpp"
@@ -17,6 +18,7 @@
 using namespace bhnsid;
 using namespace bhnsid::diagnostics;
 using Catch::Detail::Approx;
+using bhnsid::test::fill;
 
 namespace {
 
@@ -32,16 +34,6 @@ std::unique_ptr<grid::UniformGrid> make_grid(int n) {
   for (const char* name : {fields::chi, fields::puncture_phi, fields::aa, fields::rho0, fields::press, fields::enthalpy})
     static_cast<Grid&>(*g).add_field(name, scalar);
   return g;
-}
-
-/// Sets field `name` to f(x, y, z) at every stored point of the finest level.
-template <class F>
-void fill(Grid& g, const char* name, int component, F&& f) {
-  const Level& lv = g.finest();
-  double* v = g.data(g.field_id(name), component, 0);
-  for (int k = 0; k < lv.nz; ++k)
-    for (int j = 0; j < lv.ny; ++j)
-      for (int i = 0; i < lv.nx; ++i) v[lv.at(i, j, k)] = f(lv.x(i), lv.y(j), lv.z(k));
 }
 
 }  // namespace

@@ -12,12 +12,14 @@
 
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "evaluator.hpp"
+#include "grid_fill.hpp"
 #include "hierarchy.hpp"
 #include "uniform_grid.hpp"
 
 using namespace bhnsid;
 using namespace bhnsid::ire;
 using Catch::Detail::Approx;
+using bhnsid::test::fill;
 
 namespace {
 
@@ -35,15 +37,6 @@ std::unique_ptr<grid::UniformGrid> make_grid(int n, double half_width) {
   grid.add_field(fields::eta, scalar);
   grid.add_field(fields::shift, vector, core::TimeParity::odd);
   return g;
-}
-
-template <class F>
-void fill(Grid& g, const char* name, int component, F&& f) {
-  const Level& lv = g.finest();
-  double* v = g.data(g.field_id(name), component, 0);
-  for (int k = 0; k < lv.nz; ++k)
-    for (int j = 0; j < lv.ny; ++j)
-      for (int i = 0; i < lv.nx; ++i) v[lv.at(i, j, k)] = f(lv.x(i), lv.y(j), lv.z(k));
 }
 
 /// Column `name` of the axis table as (x, value) pairs, evaluated points only.
