@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "bhnsid/core/errors.hpp"
 
@@ -90,58 +91,95 @@ RobinRows robin_stencils(const Level& lv, const std::array<double, 3>& centre, b
 
 namespace {
 
-// sum over the row's entries of weight (u - u_inf)
-inline double ray_sum(const RobinRows& rows, std::size_t r, double u_inf, const double* u) {
-  double v = 0;
-  for (std::size_t e = rows.begin[r]; e < rows.begin[r + 1]; ++e) v += rows.weight[e] * (u[rows.index[e]] - u_inf);
-  return v;
+/// Up to this many arrays share one pass over the rows (their row sums live in registers).
+constexpr std::size_t max_batch = 8;
+
+/// Calls fn(std::integral_constant<int, n>{}) for 1 <= n <= max_batch.
+template <class Fn>
+void with_batch(std::size_t n, Fn&& fn) {
+  switch (n) {
+    case 1: return fn(std::integral_constant<int, 1>{});
+    case 2: return fn(std::integral_constant<int, 2>{});
+    case 3: return fn(std::integral_constant<int, 3>{});
+    case 4: return fn(std::integral_constant<int, 4>{});
+    case 5: return fn(std::integral_constant<int, 5>{});
+    case 6: return fn(std::integral_constant<int, 6>{});
+    case 7: return fn(std::integral_constant<int, 7>{});
+    default: return fn(std::integral_constant<int, 8>{});
+  }
+}
+
+/// Inside a parallel region: for every row r (shared among the threads), sum[t] = sum over the
+/// row's entries of weight (u_t - u_inf_t), then done(r, sum). Subtracting u_inf per entry (not
+/// u_inf times the row's scale afterwards) keeps u = u_inf an exact solution of the rows: a
+/// solution that is exact to round-off (P = 0) must have residual 0, not 1e-17 noise that the
+/// multigrid's stall test would see.
+template <int N, class Done>
+void row_sums(const RobinRows& rows, const std::array<const double*, N>& u, const std::array<double, N>& u_inf,
+              Done&& done) {
+  const auto n = static_cast<std::ptrdiff_t>(rows.size());
+  const std::size_t* begin = rows.begin.data();
+  const std::ptrdiff_t* index = rows.index.data();
+  const double* weight = rows.weight.data();
+#pragma omp for schedule(static)
+  for (std::ptrdiff_t r = 0; r < n; ++r) {
+    std::array<double, N> sum{};
+    for (std::size_t e = begin[r]; e < begin[r + 1]; ++e) {
+      const double w = weight[e];
+      const std::ptrdiff_t i = index[e];
+      for (int t = 0; t < N; ++t) sum[t] += w * (u[t][i] - u_inf[t]);
+    }
+    done(static_cast<std::size_t>(r), sum);
+  }
 }
 
 }  // namespace
 
-void robin_residual(const RobinRows& rows, double u_inf, const double* u, const double* rhs, const std::uint8_t* fixed,
-                    double* res) {
-  const auto n = static_cast<std::ptrdiff_t>(rows.size());
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t r = 0; r < n; ++r) {
-    const std::ptrdiff_t p = rows.point[static_cast<std::size_t>(r)];
-    if (fixed && fixed[p]) {
-      res[p] = 0;
-      continue;
-    }
-    const double b = (u[p] - u_inf) - ray_sum(rows, static_cast<std::size_t>(r), u_inf, u);
-    res[p] = (rhs ? rhs[p] : 0.0) - b;
-  }
+void robin_residual(const RobinRows& rows, const std::vector<RobinResidual>& fields) {
+  for (std::size_t first = 0; first < fields.size(); first += max_batch)
+    with_batch(std::min(max_batch, fields.size() - first), [&](auto batch) {
+      constexpr int N = decltype(batch)::value;
+      const RobinResidual* f = fields.data() + first;
+      std::array<const double*, N> u;
+      std::array<double, N> u_inf;
+      for (int t = 0; t < N; ++t) u[t] = f[t].u, u_inf[t] = f[t].u_inf;
+#pragma omp parallel
+      row_sums<N>(rows, u, u_inf, [&](std::size_t r, const std::array<double, N>& sum) {
+        const std::ptrdiff_t p = rows.point[r];
+        for (int t = 0; t < N; ++t) {
+          const RobinResidual& x = f[t];
+          const double b = (x.u[p] - x.u_inf) - sum[t];
+          x.res[p] = x.fixed && x.fixed[p] ? 0.0 : (x.rhs ? x.rhs[p] : 0.0) - b;
+        }
+      });
+    });
 }
 
 void robin_relax(const RobinRows& rows, const std::vector<RobinTarget>& targets) {
-  const auto n = static_cast<std::ptrdiff_t>(rows.size());
-  const std::size_t nt = targets.size();
-  rows.next.resize(rows.size() * nt);
-  double* next = rows.next.data();
+  for (std::size_t first = 0; first < targets.size(); first += max_batch)
+    with_batch(std::min(max_batch, targets.size() - first), [&](auto batch) {
+      constexpr int N = decltype(batch)::value;
+      const RobinTarget* x = targets.data() + first;
+      std::array<const double*, N> u;
+      std::array<double, N> u_inf;
+      for (int t = 0; t < N; ++t) u[t] = x[t].u, u_inf[t] = x[t].u_inf;
+      rows.next.resize(rows.size() * N);
+      double* next = rows.next.data();
 #pragma omp parallel
-  {
+      {
+        row_sums<N>(rows, u, u_inf, [&](std::size_t r, const std::array<double, N>& sum) {
+          const std::ptrdiff_t p = rows.point[r];
+          for (int t = 0; t < N; ++t)
+            next[r * N + t] = x[t].fixed && x[t].fixed[p]
+                                  ? x[t].u[p]
+                                  : x[t].u_inf + sum[t] + (x[t].rhs ? x[t].rhs[p] : 0.0);
+        });
+        const auto n = static_cast<std::ptrdiff_t>(rows.size());
 #pragma omp for schedule(static)
-    for (std::ptrdiff_t r = 0; r < n; ++r) {
-      const auto q = static_cast<std::size_t>(r);
-      const std::ptrdiff_t p = rows.point[q];
-      for (std::size_t t = 0; t < nt; ++t) next[q * nt + t] = 0;
-      for (std::size_t e = rows.begin[q]; e < rows.begin[q + 1]; ++e) {
-        const double w = rows.weight[e];
-        const std::ptrdiff_t i = rows.index[e];
-        for (std::size_t t = 0; t < nt; ++t) next[q * nt + t] += w * (targets[t].u[i] - targets[t].u_inf);
+        for (std::ptrdiff_t r = 0; r < n; ++r)
+          for (int t = 0; t < N; ++t) x[t].u[rows.point[static_cast<std::size_t>(r)]] = next[static_cast<std::size_t>(r) * N + t];
       }
-      for (std::size_t t = 0; t < nt; ++t) {
-        const RobinTarget& x = targets[t];
-        next[q * nt + t] = x.fixed && x.fixed[p] ? x.u[p] : x.u_inf + next[q * nt + t] + (x.rhs ? x.rhs[p] : 0.0);
-      }
-    }
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t r = 0; r < n; ++r) {
-      const auto q = static_cast<std::size_t>(r);
-      for (std::size_t t = 0; t < nt; ++t) targets[t].u[rows.point[q]] = next[q * nt + t];
-    }
-  }
+    });
 }
 
 void zero_faces(const Level& lv, double* res) {

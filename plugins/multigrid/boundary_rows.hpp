@@ -50,10 +50,6 @@ struct RobinRows {
 /// first-order row of every level (kept to measure what the second-order one gains).
 RobinRows robin_stencils(const Level& lv, const std::array<double, 3>& centre, bool two_point);
 
-/// res = rhs - B(u) at the face points (rhs may be nullptr: zero); 0 at held points.
-void robin_residual(const RobinRows& rows, double u_inf, const double* u, const double* rhs, const std::uint8_t* fixed,
-                    double* res);
-
 /// One array whose face points obey the rows.
 struct RobinTarget {
   double* u;
@@ -62,10 +58,27 @@ struct RobinTarget {
   const std::uint8_t* fixed;    ///< nullptr: nothing held
 };
 
+/// One array's row residuals: res = rhs - B(u) at the face points (rhs nullptr: zero), 0 at held points.
+struct RobinResidual {
+  const double* u;
+  double u_inf;
+  const double* rhs;
+  const std::uint8_t* fixed;
+  double* res;
+};
+
+/// The residuals of every array in one pass, so that the rows' indices and weights stream through
+/// memory once for all of them.
+void robin_residual(const RobinRows& rows, const std::vector<RobinResidual>& fields);
+inline void robin_residual(const RobinRows& rows, double u_inf, const double* u, const double* rhs,
+                           const std::uint8_t* fixed, double* res) {
+  robin_residual(rows, {RobinResidual{u, u_inf, rhs, fixed, res}});
+}
+
 /// Every face point of every target solved for its own row from the values before the call
 /// (Jacobi: the rows are independent of each other but for the few that lean on another face
 /// point, a contraction with weights < 1/8, and Jacobi lets the threads share them). All targets
-/// in one pass, so that the rows' indices and weights stream through memory once.
+/// in one pass, as robin_residual.
 void robin_relax(const RobinRows& rows, const std::vector<RobinTarget>& targets);
 inline void robin_relax(const RobinRows& rows, double u_inf, double* u, const double* rhs, const std::uint8_t* fixed) {
   robin_relax(rows, {RobinTarget{u, u_inf, rhs, fixed}});

@@ -126,20 +126,23 @@ void FasSolver::smooth(int l, int sweeps) {
 
 void FasSolver::residual(int l) {
   const Level& lv = grid_.level(l);
+  std::vector<std::vector<RobinResidual>> boundary(row_sets_.size());
   for (const Slot& s : slots_) {
     std::vector<double*> out;
     for (int c = 0; c < s.ncomp; ++c) out.push_back(grid_.data(s.res, c, l));
     const RelaxArgs a = args(s, l);
     s.eq->residual(a, out.data());
     for (int c = 0; c < s.ncomp; ++c) {
-      const double* rhs = a.rhs ? a.rhs[c] : nullptr;
+      double* res = out[static_cast<std::size_t>(c)];
       if (s.rows < 0)
-        zero_faces(lv, out[static_cast<std::size_t>(c)]);
+        zero_faces(lv, res);
       else
-        robin_residual(rows(s, l), s.boundary.u_inf[static_cast<std::size_t>(c)],
-                       grid_.data(s.u, c, l), rhs, a.fixed, out[static_cast<std::size_t>(c)]);
+        boundary[static_cast<std::size_t>(s.rows)].push_back(RobinResidual{
+            grid_.data(s.u, c, l), s.boundary.u_inf[static_cast<std::size_t>(c)], a.rhs ? a.rhs[c] : nullptr, a.fixed, res});
     }
   }
+  for (std::size_t set = 0; set < boundary.size(); ++set)
+    robin_residual(row_sets_[set][static_cast<std::size_t>(l)], boundary[set]);
   fill_ghosts(l, residuals);
 }
 
@@ -169,8 +172,8 @@ void FasSolver::descend(int l) {
       restrict_full_weighting_minus(fine, coarse, r, minus_lu[static_cast<std::size_t>(c)], f, s.rows >= 0);
       if (s.rows >= 0) {
         // Boundary rows: rhs = B(u_H) + injected fine residual; robin_residual with no rhs gives -B.
-        robin_residual(rows(s, cl), s.boundary.u_inf[static_cast<std::size_t>(c)],
-                       grid_.data(s.u, c, cl), nullptr, fixed, f);
+        robin_residual(rows(s, cl), {RobinResidual{grid_.data(s.u, c, cl), s.boundary.u_inf[static_cast<std::size_t>(c)],
+                                                   nullptr, fixed, f}});
         for_face_points(coarse, [&](int i, int j, int k) {
           const std::ptrdiff_t p = coarse.at(i, j, k);
           f[p] = r[fine.at(2 * i, 2 * j, 2 * k)] - f[p];

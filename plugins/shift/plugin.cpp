@@ -53,12 +53,13 @@ void declare(core::PluginBuilder& b) {
       .at_least(0);
   b.integer("local_sweeps")
       .doc("extra red-black sweeps on a box about the excision cube after every multigrid sweep of the shift (the "
-           "coefficient 6 dphi/phi ~ 6/r makes the points next to the cube the slow ones); 0: off")
-      .default_value(4)
+           "coefficient 6 dphi/phi ~ 6/r and the coarse levels' larger cubes make the points within ~10 of the cube the "
+           "slow ones); 0: off")
+      .default_value(16)
       .at_least(0);
   b.integer("local_width")
       .doc("the box of the local sweeps: the held points' bounding box widened by this many points per side")
-      .default_value(4)
+      .default_value(8)
       .at_least(0);
   b.real("test_coupling_scale")
       .doc("TEST ONLY: multiplies the term (6/phi)[(d_j beta^i + d_i beta^j) dphi_j - (2/3) dphi_i div beta] "

@@ -21,8 +21,8 @@ struct Settings {
   double coupling_scale = 1;  ///< TEST ONLY factor on the (6/phi)(d beta) d phi term
   double min_side = 0;      ///< smallest full side of the excision cube (hatted); 0: max(M/2, 3 dx) alone
   double lattice = 0;       ///< > 0: faces of the excision cube on the planes of this lattice (snap_to_lattice)
-  int local_sweeps = 4;     ///< extra red-black sweeps on the box about the hole after every sweep
-  int local_width = 4;      ///< the box: the held points' bounding box widened by this many points
+  int local_sweeps = 16;    ///< extra red-black sweeps on the box about the hole after every sweep
+  int local_width = 8;      ///< the box: the held points' bounding box widened by this many points
 };
 
 /// What one refresh of the puncture terms did, for the log and the scalars.

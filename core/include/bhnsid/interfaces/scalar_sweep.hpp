@@ -58,14 +58,16 @@ void scalar_residual(const Level& lv, const double* u, const double* rhs, const 
     const std::ptrdiff_t p = lv.at(0, j, k);
     const double* __restrict c = u + p;
     double* __restrict o = out + p;
+    stencil::with_row_mask<Masked>(fixed, p, end, [&](auto masked_row) {
 #pragma omp simd
-    for (int i = 1; i < end; ++i) {
-      double r = -(ih2 * (c[i - 1] + c[i + 1] + c[i - sy] + c[i + sy] + c[i - sz] + c[i + sz] - 6.0 * c[i]) +
-                   local.at(p + i, c[i]).value);
-      if constexpr (HasRhs) r += rhs[p + i];
-      if constexpr (Masked) r = fixed[p + i] ? 0.0 : r;
-      o[i] = r;
-    }
+      for (int i = 1; i < end; ++i) {
+        double r = -(ih2 * (c[i - 1] + c[i + 1] + c[i - sy] + c[i + sy] + c[i - sz] + c[i + sz] - 6.0 * c[i]) +
+                     local.at(p + i, c[i]).value);
+        if constexpr (HasRhs) r += rhs[p + i];
+        if constexpr (decltype(masked_row)::value) r = fixed[p + i] ? 0.0 : r;
+        o[i] = r;
+      }
+    });
   });
 }
 
@@ -80,20 +82,23 @@ void scalar_relax(const Level& lv, double* u, const double* rhs, const std::uint
     for (int j = 1; j < j1; ++j) {
       const std::ptrdiff_t p = lv.at(0, j, k);
       double* c = u + p;
-      // A point of one colour reads only points of the other, so the iterations are independent.
+      stencil::with_row_mask<Masked>(fixed, p, end, [&](auto masked_row) {
+        // A point of one colour reads only points of the other, so the iterations are independent.
 #pragma omp simd
-      for (int i = stencil::first_of_colour(j, k, colour); i < end; i += 2) {
-        const LocalTerm t = local.at(p + i, c[i]);
-        double r = ih2 * (c[i - 1] + c[i + 1] + c[i - sy] + c[i + sy] + c[i - sz] + c[i + sz] - 6.0 * c[i]) + t.value;
-        if constexpr (HasRhs) r -= rhs[p + i];
-        double step;
-        if constexpr (Local::linear)
-          step = linear_factor * r;
-        else
-          step = -omega * r / (t.slope - 6.0 * ih2);
-        if constexpr (Masked) step = fixed[p + i] ? 0.0 : step;
-        c[i] += step;
-      }
+        for (int i = stencil::first_of_colour(j, k, colour); i < end; i += 2) {
+          const LocalTerm t = local.at(p + i, c[i]);
+          double r =
+              ih2 * (c[i - 1] + c[i + 1] + c[i - sy] + c[i + sy] + c[i - sz] + c[i + sz] - 6.0 * c[i]) + t.value;
+          if constexpr (HasRhs) r -= rhs[p + i];
+          double step;
+          if constexpr (Local::linear)
+            step = linear_factor * r;
+          else
+            step = -omega * r / (t.slope - 6.0 * ih2);
+          if constexpr (decltype(masked_row)::value) step = fixed[p + i] ? 0.0 : step;
+          c[i] += step;
+        }
+      });
     }
   };
   stencil::red_black_sweep(lv, plane, mirror);

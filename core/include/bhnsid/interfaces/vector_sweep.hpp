@@ -76,18 +76,20 @@ void vector_residual(const Level& lv, ConstComponents v, const double* const* rh
     [[maybe_unused]] const double *fx = nullptr, *fy = nullptr, *fz = nullptr;
     if constexpr (HasRhs) fx = rhs[0] + p, fy = rhs[1] + p, fz = rhs[2] + p;
     [[maybe_unused]] const std::uint8_t* m = fixed + p;
+    with_row_mask<Masked>(fixed, p, end, [&](auto masked_row) {
 #pragma omp simd
-    for (int i = 1; i < end; ++i) {
-      const Triple l = principal(x, y, z, i);
-      const Triple n = lower.at(p + i, i, x, y, z);
-      Triple r{-(ih2 * l.x + n.x), -(ih2 * l.y + n.y), -(ih2 * l.z + n.z)};
-      if constexpr (HasRhs) r.x += fx[i], r.y += fy[i], r.z += fz[i];
-      double keep = 1.0;
-      if constexpr (Masked) keep = m[i] ? 0.0 : 1.0;
-      ox[i] = keep * r.x;
-      oy[i] = keep * r.y;
-      oz[i] = keep * r.z;
-    }
+      for (int i = 1; i < end; ++i) {
+        const Triple l = principal(x, y, z, i);
+        const Triple n = lower.at(p + i, i, x, y, z);
+        Triple r{-(ih2 * l.x + n.x), -(ih2 * l.y + n.y), -(ih2 * l.z + n.z)};
+        if constexpr (HasRhs) r.x += fx[i], r.y += fy[i], r.z += fz[i];
+        double keep = 1.0;
+        if constexpr (decltype(masked_row)::value) keep = m[i] ? 0.0 : 1.0;
+        ox[i] = keep * r.x;
+        oy[i] = keep * r.y;
+        oz[i] = keep * r.z;
+      }
+    });
   });
 }
 
@@ -123,19 +125,21 @@ void vector_relax(const Level& lv, Components v, const double* const* rhs, const
       [[maybe_unused]] const double *fx = nullptr, *fy = nullptr, *fz = nullptr;
       if constexpr (HasRhs) fx = rhs[0] + p, fy = rhs[1] + p, fz = rhs[2] + p;
       [[maybe_unused]] const std::uint8_t* m = fixed + p;
-      // Within a row the colour's points read only the other colour: independent iterations.
+      with_row_mask<Masked>(fixed, p, end, [&](auto masked_row) {
+        // Within a row the colour's points read only the other colour: independent iterations.
 #pragma omp simd
-      for (int i = first_of_colour(j, k, colour); i < end; i += 2) {
-        const Triple l = principal(x, y, z, i);
-        const Triple n = lower.at(p + i, i, x, y, z);
-        Triple r{ih2 * l.x + n.x, ih2 * l.y + n.y, ih2 * l.z + n.z};
-        if constexpr (HasRhs) r.x -= fx[i], r.y -= fy[i], r.z -= fz[i];
-        double g = factor;
-        if constexpr (Masked) g = m[i] ? 0.0 : factor;
-        vx[i] += g * r.x;
-        vy[i] += g * r.y;
-        vz[i] += g * r.z;
-      }
+        for (int i = first_of_colour(j, k, colour); i < end; i += 2) {
+          const Triple l = principal(x, y, z, i);
+          const Triple n = lower.at(p + i, i, x, y, z);
+          Triple r{ih2 * l.x + n.x, ih2 * l.y + n.y, ih2 * l.z + n.z};
+          if constexpr (HasRhs) r.x -= fx[i], r.y -= fy[i], r.z -= fz[i];
+          double g = factor;
+          if constexpr (decltype(masked_row)::value) g = m[i] ? 0.0 : factor;
+          vx[i] += g * r.x;
+          vy[i] += g * r.y;
+          vz[i] += g * r.z;
+        }
+      });
     }
   };
   colour_in_two_passes(lv, 0, plane);
