@@ -175,42 +175,6 @@ void ShiftEquation::residual(const RelaxArgs& args, double* const* out) const {
   });
 }
 
-namespace {
-
-/// Red-black Gauss-Seidel sweeps on the box b = {i0, i1, j0, j1, k0, k1} (inclusive, interior), the
-/// same point update as stencil::vector_relax. Serial: the box is a few hundred points.
-template <class Lower>
-void relax_box(const Level& lv, const stencil::Components& v, const double* const* rhs, const std::uint8_t* fixed,
-               double omega, const stencil::Mirror& mirror, const Lower& lower, const std::array<int, 6>& b,
-               int sweeps) {
-  const double ih2 = stencil::inv_h2(lv);
-  const double factor = omega / ((20.0 / 3.0) * ih2);
-  const bool touches_ghost = lv.z_symmetry && b[4] == lv.k_begin();
-  for (int sweep = 0; sweep < sweeps; ++sweep)
-    for (int colour = 0; colour < 2; ++colour) {
-      for (int k = b[4]; k <= b[5]; ++k)
-        for (int j = b[2]; j <= b[3]; ++j) {
-          const std::ptrdiff_t p = lv.at(0, j, k);
-          const stencil::Rows x = stencil::rows_at(v[0] + p, lv.sy, lv.sz), y = stencil::rows_at(v[1] + p, lv.sy, lv.sz),
-                              z = stencil::rows_at(v[2] + p, lv.sy, lv.sz);
-          for (int i = b[0]; i <= b[1]; ++i) {
-            if (((i + j + k) & 1) != colour) continue;
-            if (fixed && fixed[p + i]) continue;
-            const stencil::Triple pl = stencil::principal(x, y, z, i);
-            const stencil::Triple n = lower.at(p + i, i, x, y, z);
-            stencil::Triple r{ih2 * pl.x + n.x, ih2 * pl.y + n.y, ih2 * pl.z + n.z};
-            if (rhs) r.x -= rhs[0][p + i], r.y -= rhs[1][p + i], r.z -= rhs[2][p + i];
-            v[0][p + i] += factor * r.x;
-            v[1][p + i] += factor * r.y;
-            v[2][p + i] += factor * r.z;
-          }
-        }
-      if (touches_ghost) mirror();
-    }
-}
-
-}  // namespace
-
 void ShiftEquation::relax(const RelaxArgs& args) const {
   const int l = args.level;
   const stencil::Components v{grid_.data(beta_, 0, l), grid_.data(beta_, 1, l), grid_.data(beta_, 2, l)};
@@ -221,9 +185,16 @@ void ShiftEquation::relax(const RelaxArgs& args) const {
     const ShiftLower<decltype(hole)::value, decltype(matter)::value> lower{s};
     stencil::vector_relax_any(grid_.level(l), v, args.rhs, args.fixed, args.omega, mirror, lower);
     if (local) {
-      if (grid_.level(l).z_symmetry) mirror();
-      relax_box(grid_.level(l), v, args.rhs, args.fixed, args.omega, mirror, lower,
-                held_box_[static_cast<std::size_t>(l)], settings_.local_sweeps);
+      // The same sweep on the box about the hole (a few thousand points), local_sweeps times.
+      const Level& lv = grid_.level(l);
+      const std::array<int, 6>& b = held_box_[static_cast<std::size_t>(l)];
+      const stencil::Box box{b[0], b[1], b[2], b[3], b[4], b[5]};
+      const bool touches_ghost = lv.z_symmetry && box.k0 == lv.k_begin();
+      if (touches_ghost) mirror();
+      for (int sweep = 0; sweep < settings_.local_sweeps; ++sweep) {
+        stencil::vector_relax_any(lv, v, args.rhs, args.fixed, args.omega, mirror, lower, box);
+        if (touches_ghost) mirror();
+      }
     }
   });
 }

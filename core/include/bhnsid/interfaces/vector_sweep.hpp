@@ -98,26 +98,38 @@ void vector_residual(const Level& lv, ConstComponents v, const double* const* rh
 // other one, would let threads race on the planes their slabs share. Instead each colour runs in two
 // passes over the planes, even then odd (counted from k_begin): no plane is written while a neighbour
 // reads it, and the Gauss-Seidel order within the colour is the same on any number of threads.
+/// Planes [k0, k1) (default: every interior plane of the level).
 template <class PlaneFn>
 void colour_in_two_passes(const Level& lv, int colour, PlaneFn&& plane) {
-  const int k0 = lv.k_begin(), k1 = lv.nz - 1;
+  colour_in_two_passes(lv.k_begin(), lv.nz - 1, colour, plane);
+}
+template <class PlaneFn>
+void colour_in_two_passes(int k0, int k1, int colour, PlaneFn&& plane) {
   for (int pass = 0; pass < 2; ++pass) {
 #pragma omp parallel for schedule(static)
     for (int k = k0 + pass; k < k1; k += 2) plane(k, colour);
   }
 }
 
-/// One red-black Gauss-Seidel sweep (colour 0, then 1) toward L(V) = rhs: at each interior, non-held
-/// point V^a += omega (L - rhs)^a h^2 / (20/3). mirror() refreshes the ghost plane of all three
-/// components between the colours (equatorial symmetry).
+/// A box of interior points, bounds inclusive.
+struct Box {
+  int i0, i1, j0, j1, k0, k1;
+};
+
+/// Every interior point of the level.
+inline Box interior(const Level& lv) { return {1, lv.nx - 2, 1, lv.ny - 2, lv.k_begin(), lv.nz - 2}; }
+
+/// One red-black Gauss-Seidel sweep (colour 0, then 1) toward L(V) = rhs on the box: at each
+/// non-held point V^a += omega (L - rhs)^a h^2 / (20/3). mirror() refreshes the ghost plane of all
+/// three components between the colours (equatorial symmetry, when the box reaches z = 0).
 template <bool HasRhs, bool Masked, class Lower>
 void vector_relax(const Level& lv, Components v, const double* const* rhs, const std::uint8_t* fixed, double omega,
-                  const Mirror& mirror, const Lower& lower) {
+                  const Mirror& mirror, const Lower& lower, const Box& box) {
   const double ih2 = inv_h2(lv);
   const double factor = omega / ((20.0 / 3.0) * ih2);  // -omega / (dL/dV), dL/dV = -(20/3)/h^2
-  const int end = lv.nx - 1, j1 = lv.ny - 1;
+  const int end = lv.nx - 1, i1 = box.i1 + 1;
   auto plane = [&](int k, int colour) {
-    for (int j = 1; j < j1; ++j) {
+    for (int j = box.j0; j <= box.j1; ++j) {
       const std::ptrdiff_t p = lv.at(0, j, k);
       const Rows x = rows_at(v[0] + p, lv.sy, lv.sz), y = rows_at(v[1] + p, lv.sy, lv.sz),
                  z = rows_at(v[2] + p, lv.sy, lv.sz);
@@ -128,7 +140,7 @@ void vector_relax(const Level& lv, Components v, const double* const* rhs, const
       with_row_mask<Masked>(fixed, p, end, [&](auto masked_row) {
         // Within a row the colour's points read only the other colour: independent iterations.
 #pragma omp simd
-        for (int i = first_of_colour(j, k, colour); i < end; i += 2) {
+        for (int i = box.i0 + ((box.i0 + j + k + colour) & 1); i < i1; i += 2) {
           const Triple l = principal(x, y, z, i);
           const Triple n = lower.at(p + i, i, x, y, z);
           Triple r{ih2 * l.x + n.x, ih2 * l.y + n.y, ih2 * l.z + n.z};
@@ -142,9 +154,9 @@ void vector_relax(const Level& lv, Components v, const double* const* rhs, const
       });
     }
   };
-  colour_in_two_passes(lv, 0, plane);
-  if (lv.z_symmetry) mirror();
-  colour_in_two_passes(lv, 1, plane);
+  colour_in_two_passes(box.k0, box.k1 + 1, 0, plane);
+  if (lv.z_symmetry && box.k0 == lv.k_begin()) mirror();
+  colour_in_two_passes(box.k0, box.k1 + 1, 1, plane);
 }
 
 template <class Lower>
@@ -157,10 +169,15 @@ void vector_residual_any(const Level& lv, ConstComponents v, const double* const
 
 template <class Lower>
 void vector_relax_any(const Level& lv, Components v, const double* const* rhs, const std::uint8_t* fixed,
-                      double omega, const Mirror& mirror, const Lower& lower) {
+                      double omega, const Mirror& mirror, const Lower& lower, const Box& box) {
   with_variants(rhs != nullptr, fixed != nullptr, [&](auto has_rhs, auto masked) {
-    vector_relax<decltype(has_rhs)::value, decltype(masked)::value>(lv, v, rhs, fixed, omega, mirror, lower);
+    vector_relax<decltype(has_rhs)::value, decltype(masked)::value>(lv, v, rhs, fixed, omega, mirror, lower, box);
   });
+}
+template <class Lower>
+void vector_relax_any(const Level& lv, Components v, const double* const* rhs, const std::uint8_t* fixed,
+                      double omega, const Mirror& mirror, const Lower& lower) {
+  vector_relax_any(lv, v, rhs, fixed, omega, mirror, lower, interior(lv));
 }
 
 }  // namespace bhnsid::stencil
