@@ -20,6 +20,9 @@ OuterBoundary LapseEquation::boundary() const {
 
 std::vector<std::string> LapseEquation::coefficients() const {
   // aa_hat is not restricted: its owner (momentum) fills every level, the Bowen-York part analytically.
+  // In vacuum the fluid arrays stay zero and are not read: restricting them would fault in their
+  // pages for nothing.
+  if (!fluid_) return {};
   return {fields::rho0, fields::press, fields::enthalpy, fields::fluid_velocity};
 }
 

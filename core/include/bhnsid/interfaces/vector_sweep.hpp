@@ -98,17 +98,22 @@ void vector_residual(const Level& lv, ConstComponents v, const double* const* rh
 // other one, would let threads race on the planes their slabs share. Instead each colour runs in two
 // passes over the planes, even then odd (counted from k_begin): no plane is written while a neighbour
 // reads it, and the Gauss-Seidel order within the colour is the same on any number of threads.
-/// Planes [k0, k1) (default: every interior plane of the level).
+/// Planes [k0, k1) of points_per_plane points each (default: every interior plane of the level). A
+/// pass over fewer than parallel_min_points points (a coarse level, the shift's box about the hole)
+/// runs on one thread: the wake-up of a parallel region costs more than it saves there, and under
+/// OMP_WAIT_POLICY=passive the shift's 16 box sweeps per relax made 2 threads slower than 1.
+constexpr long parallel_min_points = 16384;
 template <class PlaneFn>
-void colour_in_two_passes(const Level& lv, int colour, PlaneFn&& plane) {
-  colour_in_two_passes(lv.k_begin(), lv.nz - 1, colour, plane);
-}
-template <class PlaneFn>
-void colour_in_two_passes(int k0, int k1, int colour, PlaneFn&& plane) {
+void colour_in_two_passes(int k0, int k1, long points_per_plane, int colour, PlaneFn&& plane) {
+  const bool parallel = (k1 - k0) / 2 * points_per_plane >= parallel_min_points;
   for (int pass = 0; pass < 2; ++pass) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (parallel)
     for (int k = k0 + pass; k < k1; k += 2) plane(k, colour);
   }
+}
+template <class PlaneFn>
+void colour_in_two_passes(const Level& lv, int colour, PlaneFn&& plane) {
+  colour_in_two_passes(lv.k_begin(), lv.nz - 1, static_cast<long>(lv.nx - 2) * (lv.ny - 2), colour, plane);
 }
 
 /// A box of interior points, bounds inclusive.
@@ -154,9 +159,10 @@ void vector_relax(const Level& lv, Components v, const double* const* rhs, const
       });
     }
   };
-  colour_in_two_passes(box.k0, box.k1 + 1, 0, plane);
+  const long points_per_plane = static_cast<long>(box.i1 - box.i0 + 1) * (box.j1 - box.j0 + 1);
+  colour_in_two_passes(box.k0, box.k1 + 1, points_per_plane, 0, plane);
   if (lv.z_symmetry && box.k0 == lv.k_begin()) mirror();
-  colour_in_two_passes(box.k0, box.k1 + 1, 1, plane);
+  colour_in_two_passes(box.k0, box.k1 + 1, points_per_plane, 1, plane);
 }
 
 template <class Lower>
