@@ -83,8 +83,9 @@ TEST_CASE("plugins.puncture.boosted_puncture_matches_the_axisymmetric_reference"
     CHECK(b.scalar("angular_momentum_z") == Approx(0.1 * t.p).epsilon(1e-4));
     CHECK(b.scalar("wvec_max") == 0.0);  // no matter: W has no source
     // The shift's extra sweeps around the hole (shift.local_sweeps) brought this solve from 10 V(2,1)
-    // cycles to 5: a guard against losing that again.
-    CHECK(b.scalar("multigrid_cycles") <= 6);
+    // cycles to 5, and with 16 sweeps on a wider box and V(2,2) to FMG + 2 (the last one at r/tau
+    // just under 1e-3, so round-off may tip it to 3): a guard against losing that again.
+    CHECK(b.scalar("multigrid_cycles") <= 3);
   }
 }
 
