@@ -48,15 +48,17 @@ struct HamiltonianTerm {
     const double inv7 = inv4 * inv_phi * inv_phi * inv_phi;
     const double aa = s.aa[idx];
     double value = 0.125 * aa * inv7, slope = -0.875 * aa * inv7 * inv_phi;
+    // The matter term is formed at every point and selected, not branched on: a branch keeps GCC
+    // from vectorising the sweep. Outside the star (rho0 = 0) W may be NaN (a superluminal
+    // corotation velocity far out); the select drops it.
     const MatterArrays& m = s.matter;
     const double rho0 = m.rho0[idx];
-    if (rho0 > 0) {
-      const double e = matter_projections(rho0, m.press[idx], m.enthalpy[idx], lorentz2_at<Moving>(s, idx, phi)).energy;
-      const double phi4 = 1.0 / inv4;
-      const double c = 2.0 * std::numbers::pi * m.sigma2 * s.matter_scale * e * phi4;
-      value += c * phi;
-      slope += 5.0 * c;
-    }
+    const double e = matter_projections(rho0, m.press[idx], m.enthalpy[idx], lorentz2_at<Moving>(s, idx, phi)).energy;
+    const double phi2 = phi * phi;
+    const double c_matter = 2.0 * std::numbers::pi * m.sigma2 * s.matter_scale * e * (phi2 * phi2);
+    const double c = rho0 > 0 ? c_matter : 0.0;
+    value += c * phi;
+    slope += 5.0 * c;
     return {value, slope};
   }
 };

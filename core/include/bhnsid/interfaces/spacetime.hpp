@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 #include "bhnsid/core/services.hpp"
 #include "bhnsid/interfaces/grid.hpp"
@@ -70,20 +71,21 @@ inline std::array<double, 3> falloff_centre(const Fluid* fluid, const Puncture* 
 
 /// The matter arrays of one level as every field equation reads them. Without a fluid the fields
 /// still exist (the hamiltonian plugin registers them, zero) and sigma = 1; velocity and shift are
-/// set only for moving matter (shift null when no shift equation is active).
+/// set only for moving matter. Without a shift equation shift[c] points at velocity[c] with weight
+/// 0, so that coordinate_velocity reads valid memory without a test per point (a conditional load
+/// kept the sweeps of moving matter from vectorising).
 struct MatterArrays {
   const double* rho0 = nullptr;
   const double* press = nullptr;
   const double* enthalpy = nullptr;
   const double* velocity[3] = {nullptr, nullptr, nullptr};
   const double* shift[3] = {nullptr, nullptr, nullptr};
+  double shift_weight = 0;  ///< 1 with a shift equation, 0 without
   double sigma2 = 1;  ///< sigma^2: the matter terms of the hatted equations carry it (§1.3)
   bool moving = false;
 
   /// beta^i + V^i at array index idx (moving matter only).
-  double coordinate_velocity(int c, std::ptrdiff_t idx) const {
-    return velocity[c][idx] + (shift[c] ? shift[c][idx] : 0.0);
-  }
+  double coordinate_velocity(int c, std::ptrdiff_t idx) const { return velocity[c][idx] + shift_weight * shift[c][idx]; }
 };
 
 /// The arrays for an explicit sigma and motion (diagnostics, tests).
@@ -99,8 +101,9 @@ inline MatterArrays matter_arrays(const Grid& grid, double sigma, bool moving, i
     const int beta = grid.has_field(fields::shift) ? grid.field_id(fields::shift) : -1;
     for (int c = 0; c < 3; ++c) {
       m.velocity[c] = grid.data(vel, c, level);
-      m.shift[c] = beta >= 0 ? grid.data(beta, c, level) : nullptr;
+      m.shift[c] = beta >= 0 ? grid.data(beta, c, level) : m.velocity[c];
     }
+    m.shift_weight = beta >= 0 ? 1.0 : 0.0;
   }
   return m;
 }
@@ -150,7 +153,8 @@ struct MatterProjections {
 inline double lorentz_squared(double phi, double eta, double ux, double uy, double uz) {
   const double phi3 = phi * phi * phi;
   const double v2 = phi3 * phi3 * (ux * ux + uy * uy + uz * uz) / (eta * eta);
-  return v2 < 1.0 ? 1.0 / (1.0 - v2) : std::nan("");
+  // A constant, not std::nan(""): that is a library call, and a call keeps the sweeps unvectorised.
+  return v2 < 1.0 ? 1.0 / (1.0 - v2) : std::numeric_limits<double>::quiet_NaN();
 }
 
 /// The momentum density j^i = rho0 h W^2 v^i, v^i = (beta^i + V^i)/alpha (physics-notes §1.2).
