@@ -2,6 +2,7 @@
 //
 //   bhnsid-bench poisson --n N [--threads T] [--reps R]
 //   bhnsid-bench puncture --n N [--threads T] [--reps R]
+//   bhnsid-bench sweep [--n N] [--threads T]
 //
 // solves the hypre peer's problem (../shared/peers/src/problem.hpp: -Laplace u = f on the unit
 // cube, N^3 interior unknowns, h = 1/(N+1), homogeneous Dirichlet, u = g(x)g(y)g(z) with
@@ -28,6 +29,7 @@
 #include "bhnsid/core/parfile.hpp"
 #include "bhnsid/core/run.hpp"
 #include "bhnsid/core/yaml_tree.hpp"
+#include "sweep.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -227,7 +229,12 @@ int main(int argc, char** argv) {
   q->add_option("--n", pn, "intervals per axis, a power of 2")->required();
   q->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
   q->add_option("--reps", reps, "timed runs after one warm-up; the best is reported")->check(CLI::PositiveNumber);
+  int sweep_n = 256;
+  auto* w = app.add_subcommand("sweep", "one vector sweep of core (principal part only), ns per point at n = 32 .. N");
+  w->add_option("--n", sweep_n, "largest n (intervals), a power of 2 >= 32");
+  w->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
+  if (w->parsed()) return bhnsid::bench::vector_sweep(sweep_n, threads);
   if (q->parsed()) {
     try {
       return puncture(pn, threads, reps);
