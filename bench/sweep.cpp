@@ -24,6 +24,10 @@ struct NoLowerTerm {
 }  // namespace
 
 int vector_sweep(int max_n, int threads) {
+  if (max_n < 32 || (max_n & (max_n - 1)) != 0) {
+    std::cerr << "bhnsid-bench sweep: --n must be a power of 2, at least 32, got " << max_n << "\n";
+    return 2;
+  }
   omp_set_num_threads(threads);
   for (int n = 32; n <= max_n; n *= 2) {
     const Level lv = test::make_level(n, 1.0 / n, true);
