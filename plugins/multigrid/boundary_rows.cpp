@@ -135,51 +135,61 @@ void row_sums(const RobinRows& rows, const std::array<const double*, N>& u, cons
 
 }  // namespace
 
-void robin_residual(const RobinRows& rows, const std::vector<RobinResidual>& fields) {
-  for (std::size_t first = 0; first < fields.size(); first += max_batch)
-    with_batch(std::min(max_batch, fields.size() - first), [&](auto batch) {
+namespace {
+
+/// Splits items (each with .u and .u_inf) into batches of at most max_batch and calls
+/// fn(batch, first, u, u_inf) for each: batch an std::integral_constant with the batch's size N,
+/// first its first item, u and u_inf the batch's arrays and asymptotic values for row_sums.
+template <class Item, class Fn>
+void in_batches(const std::vector<Item>& items, Fn&& fn) {
+  for (std::size_t start = 0; start < items.size(); start += max_batch)
+    with_batch(std::min(max_batch, items.size() - start), [&](auto batch) {
       constexpr int N = decltype(batch)::value;
-      const RobinResidual* f = fields.data() + first;
+      const Item* first = items.data() + start;
       std::array<const double*, N> u;
       std::array<double, N> u_inf;
-      for (int t = 0; t < N; ++t) u[t] = f[t].u, u_inf[t] = f[t].u_inf;
-#pragma omp parallel
-      row_sums<N>(rows, u, u_inf, [&](std::size_t r, const std::array<double, N>& sum) {
-        const std::ptrdiff_t p = rows.point[r];
-        for (int t = 0; t < N; ++t) {
-          const RobinResidual& x = f[t];
-          const double b = (x.u[p] - x.u_inf) - sum[t];
-          x.res[p] = x.fixed && x.fixed[p] ? 0.0 : (x.rhs ? x.rhs[p] : 0.0) - b;
-        }
-      });
+      for (int t = 0; t < N; ++t) u[t] = first[t].u, u_inf[t] = first[t].u_inf;
+      fn(batch, first, u, u_inf);
     });
 }
 
-void robin_relax(const RobinRows& rows, const std::vector<RobinTarget>& targets) {
-  for (std::size_t first = 0; first < targets.size(); first += max_batch)
-    with_batch(std::min(max_batch, targets.size() - first), [&](auto batch) {
-      constexpr int N = decltype(batch)::value;
-      const RobinTarget* x = targets.data() + first;
-      std::array<const double*, N> u;
-      std::array<double, N> u_inf;
-      for (int t = 0; t < N; ++t) u[t] = x[t].u, u_inf[t] = x[t].u_inf;
-      rows.next.resize(rows.size() * N);
-      double* next = rows.next.data();
+}  // namespace
+
+void robin_residual(const RobinRows& rows, const std::vector<RobinResidual>& fields) {
+  in_batches(fields, [&](auto batch, const RobinResidual* f, const auto& u, const auto& u_inf) {
+    constexpr int N = decltype(batch)::value;
 #pragma omp parallel
-      {
-        row_sums<N>(rows, u, u_inf, [&](std::size_t r, const std::array<double, N>& sum) {
-          const std::ptrdiff_t p = rows.point[r];
-          for (int t = 0; t < N; ++t)
-            next[r * N + t] = x[t].fixed && x[t].fixed[p]
-                                  ? x[t].u[p]
-                                  : x[t].u_inf + sum[t] + (x[t].rhs ? x[t].rhs[p] : 0.0);
-        });
-        const auto n = static_cast<std::ptrdiff_t>(rows.size());
-#pragma omp for schedule(static)
-        for (std::ptrdiff_t r = 0; r < n; ++r)
-          for (int t = 0; t < N; ++t) x[t].u[rows.point[static_cast<std::size_t>(r)]] = next[static_cast<std::size_t>(r) * N + t];
+    row_sums<N>(rows, u, u_inf, [&](std::size_t r, const std::array<double, N>& sum) {
+      const std::ptrdiff_t p = rows.point[r];
+      for (int t = 0; t < N; ++t) {
+        const RobinResidual& x = f[t];
+        const double b = (x.u[p] - x.u_inf) - sum[t];
+        x.res[p] = x.fixed && x.fixed[p] ? 0.0 : (x.rhs ? x.rhs[p] : 0.0) - b;
       }
     });
+  });
+}
+
+void robin_relax(const RobinRows& rows, const std::vector<RobinTarget>& targets) {
+  in_batches(targets, [&](auto batch, const RobinTarget* x, const auto& u, const auto& u_inf) {
+    constexpr int N = decltype(batch)::value;
+    rows.next.resize(rows.size() * N);
+    double* next = rows.next.data();
+#pragma omp parallel
+    {
+      row_sums<N>(rows, u, u_inf, [&](std::size_t r, const std::array<double, N>& sum) {
+        const std::ptrdiff_t p = rows.point[r];
+        for (int t = 0; t < N; ++t)
+          next[r * N + t] =
+              x[t].fixed && x[t].fixed[p] ? x[t].u[p] : x[t].u_inf + sum[t] + (x[t].rhs ? x[t].rhs[p] : 0.0);
+      });
+      const auto n = static_cast<std::ptrdiff_t>(rows.size());
+#pragma omp for schedule(static)
+      for (std::ptrdiff_t r = 0; r < n; ++r)
+        for (int t = 0; t < N; ++t)
+          x[t].u[rows.point[static_cast<std::size_t>(r)]] = next[static_cast<std::size_t>(r) * N + t];
+    }
+  });
 }
 
 void zero_faces(const Level& lv, double* res) {

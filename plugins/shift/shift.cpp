@@ -187,8 +187,7 @@ void ShiftEquation::relax(const RelaxArgs& args) const {
     if (local) {
       // The same sweep on the box about the hole (a few thousand points), local_sweeps times.
       const Level& lv = grid_.level(l);
-      const std::array<int, 6>& b = held_box_[static_cast<std::size_t>(l)];
-      const stencil::Box box{b[0], b[1], b[2], b[3], b[4], b[5]};
+      const stencil::Box& box = held_box_[static_cast<std::size_t>(l)];
       const bool touches_ghost = lv.z_symmetry && box.k0 == lv.k_begin();
       if (touches_ghost) mirror();
       for (int sweep = 0; sweep < settings_.local_sweeps; ++sweep) {
@@ -253,18 +252,18 @@ ExcisionReport ShiftEquation::update_puncture() {
     for (int l = 0; l <= coarsest; ++l) {
       const Level& lv = grid_.level(l);
       const std::uint8_t* m = grid_.mask(mask_, l);
-      std::array<int, 6> b{lv.nx, -1, lv.ny, -1, lv.nz, -1};
+      stencil::Box b{lv.nx, -1, lv.ny, -1, lv.nz, -1};
       for (int k = lv.k_begin(); k < lv.nz - 1; ++k)
         for (int j = 1; j < lv.ny - 1; ++j)
           for (int i = 1; i < lv.nx - 1; ++i)
             if (m[lv.at(i, j, k)]) {
-              b[0] = std::min(b[0], i), b[1] = std::max(b[1], i), b[2] = std::min(b[2], j);
-              b[3] = std::max(b[3], j), b[4] = std::min(b[4], k), b[5] = std::max(b[5], k);
+              b.i0 = std::min(b.i0, i), b.i1 = std::max(b.i1, i), b.j0 = std::min(b.j0, j);
+              b.j1 = std::max(b.j1, j), b.k0 = std::min(b.k0, k), b.k1 = std::max(b.k1, k);
             }
       const int w = settings_.local_width;
-      b[0] = std::max(b[0] - w, 1), b[1] = std::min(b[1] + w, lv.nx - 2);
-      b[2] = std::max(b[2] - w, 1), b[3] = std::min(b[3] + w, lv.ny - 2);
-      b[4] = std::max(b[4] - w, lv.k_begin()), b[5] = std::min(b[5] + w, lv.nz - 2);
+      b.i0 = std::max(b.i0 - w, 1), b.i1 = std::min(b.i1 + w, lv.nx - 2);
+      b.j0 = std::max(b.j0 - w, 1), b.j1 = std::min(b.j1 + w, lv.ny - 2);
+      b.k0 = std::max(b.k0 - w, lv.k_begin()), b.k1 = std::min(b.k1 + w, lv.nz - 2);
       held_box_[static_cast<std::size_t>(l)] = b;
     }
     last_mass_ = mass;

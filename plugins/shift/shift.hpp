@@ -78,8 +78,8 @@ class ShiftEquation final : public EllipticEquation {
   double last_mass_ = 0;
   std::array<double, 3> last_position_{};
   int last_finest_points_ = 0;
-  /// Per level: the held points' bounding box {i0, i1, j0, j1, k0, k1} (inclusive); empty without a hole.
-  std::vector<std::array<int, 6>> held_box_;
+  /// Per level: the held points' bounding box widened by local_width (inclusive); empty without a hole.
+  std::vector<stencil::Box> held_box_;
   std::vector<int> last_nearest_levels_;
 };
 

@@ -12,13 +12,14 @@
 
 #include "bhnsid/interfaces/vector_sweep.hpp"
 #include "test_level.hpp"
+#include "sweep_test_support.hpp"
 
 using namespace bhnsid;
 using bhnsid::test::make_level;
+using bhnsid::test::pattern;
+using bhnsid::test::Threads;
 
 namespace {
-
-double pattern(std::size_t idx, int salt) { return std::sin(0.37 * static_cast<double>(idx) + 1.1 * salt); }
 
 // z >= 0 storage: the ghost plane k = -1 holds plane 1, V^z odd.
 void mirror(const Level& lv, std::vector<double>* v) {
@@ -81,15 +82,6 @@ void reference(const Level& lv, std::vector<double>* v, const std::vector<double
     if (colour == 0 && lv.z_symmetry && box.k0 == lv.k_begin()) mirror(lv, v);
   }
 }
-
-class Threads {
- public:
-  explicit Threads(int n) : saved_(omp_get_max_threads()) { omp_set_num_threads(n); }
-  ~Threads() { omp_set_num_threads(saved_); }
-
- private:
-  int saved_;
-};
 
 }  // namespace
 

@@ -13,14 +13,15 @@
 #include "kernels/laplace.hpp"
 #include "kernels/vector_laplace.hpp"
 #include "mms_test_support.hpp"
+#include "sweep_test_support.hpp"
 
 using namespace bhnsid;
 using namespace bhnsid::mms;
 using namespace bhnsid::mms::test;
+using bhnsid::test::pattern;
+using bhnsid::test::Threads;
 
 namespace {
-
-double pattern(std::size_t idx, int salt) { return std::sin(0.37 * static_cast<double>(idx) + 1.1 * salt); }
 
 std::vector<double> filled(const Level& lv, int salt) {
   std::vector<double> v(lv.size);
@@ -57,15 +58,6 @@ void reference_sweep(const Level& lv, std::vector<double>& u, const std::vector<
     if (colour == 0) mirror_plane(lv, u.data(), 1.0);
   }
 }
-
-class Threads {
- public:
-  explicit Threads(int n) : saved_(omp_get_max_threads()) { omp_set_num_threads(n); }
-  ~Threads() { omp_set_num_threads(saved_); }
-
- private:
-  int saved_;
-};
 
 }  // namespace
 
