@@ -128,11 +128,12 @@ inline std::array<double, 6> bowen_york(const std::array<double, 3>& mom, const 
   const double n[3] = {d[0] / r, d[1] / r, d[2] / r};
   const double pn = mom[0] * n[0] + mom[1] * n[1] + mom[2] * n[2];
   const double c = 1.5 / r2;
-  std::array<double, 6> out{};
-  for (int a = 0; a < 3; ++a)
-    for (int b = a; b < 3; ++b)
-      out[static_cast<std::size_t>(sym_index(a, b))] =
-          c * (mom[a] * n[b] + mom[b] * n[a] - ((a == b ? 1.0 : 0.0) - n[a] * n[b]) * pn);
+  // Written out (no loops): a loop nest here keeps every grid loop that calls this scalar.
+  auto component = [&](int a, int b) {
+    return c * (mom[a] * n[b] + mom[b] * n[a] - ((a == b ? 1.0 : 0.0) - n[a] * n[b]) * pn);
+  };
+  const std::array<double, 6> out = {component(0, 0), component(0, 1), component(0, 2),
+                                     component(1, 1), component(1, 2), component(2, 2)};
   return out;
 }
 
