@@ -4,11 +4,12 @@
 //   lap beta^i + (1/3) d_i (d_k beta^k)
 //     = -(6/phi) [ (d_j beta^i + d_i beta^j) dphi_j - (2/3) dphi_i (d_k beta^k) ]
 //       + 2 phi^-6 Ahat^ij d_j alpha + 16 pi sigma^2 alpha phi^4 J^i,
-//   phi = puncture_phi + chi,  dphi_i = -Mhat n_i/(2 r^2) + d_i chi,
+//   phi = Mhat/(2 r) + chi,  dphi_i = -Mhat n_i/(2 r^2) + d_i chi  (the puncture's part analytic),
 //   alpha = eta/phi,  d_i alpha = (d_i eta - alpha dphi_i)/phi,
 //   J^i = rho0 h W^2 v^i,  v^i = (beta^i + V^i)/alpha.
 // The right-hand side enters core's vector sweep (stencil::vector_residual/relax) as the lower-order
 // term N = -RHS of L(beta) = lap beta + (1/3) grad div beta + N = 0.
+#include <cmath>
 #include <cstddef>
 #include <numbers>
 
@@ -24,8 +25,9 @@ using stencil::Triple;
 struct Sources {
   const double* chi = nullptr;           ///< regular part of phi (neighbours read: d_i chi)
   const double* eta = nullptr;           ///< alpha phi (neighbours read: d_i eta)
-  const double* puncture_phi = nullptr;  ///< Mhat/(2 r), hole only
-  const double* dphi_puncture[3] = {nullptr, nullptr, nullptr};  ///< -Mhat n_i/(2 r^2), hole only
+  double half_mass = 0;            ///< Mhat/2, hole only
+  double x0 = 0, y0 = 0, z0 = 0;   ///< the level's point (0, 0, 0) minus xhat_BH, hole only
+  double dx = 0;                   ///< the level's spacing
   const double* ahat[6] = {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};  ///< xx, xy, xz, yy, yz, zz
   const double* rho0 = nullptr;          ///< matter only
   const double* enthalpy = nullptr;      ///< matter only
@@ -38,11 +40,23 @@ struct Sources {
 };
 
 /// N^i = -RHS^i at one point, for stencil::vector_residual_any / vector_relax_any. Hole: add the
-/// analytic puncture parts of phi and dphi (without a puncture both are zero and are not read).
-/// Matter: add the momentum-density term (without the hydro service there is none).
+/// puncture's parts of phi and dphi, computed from the point's coordinates (4 arrays fewer to
+/// stream than stored ones; the sweep binds the row first, row()). Matter: add the
+/// momentum-density term (without the hydro service there is none).
 template <bool Hole, bool Matter>
 struct ShiftLower {
   Sources s;
+  double dy = 0, dz = 0, rho2 = 0;  ///< the bound row's y - yhat_BH, z - zhat_BH, dy^2 + dz^2
+
+  ShiftLower row(int j, int k) const {
+    ShiftLower bound = *this;
+    if constexpr (Hole) {
+      bound.dy = s.y0 + s.dx * j;
+      bound.dz = s.z0 + s.dx * k;
+      bound.rho2 = bound.dy * bound.dy + bound.dz * bound.dz;
+    }
+    return bound;
+  }
 
   [[gnu::always_inline]] Triple at(std::ptrdiff_t idx, int i, const Rows& x, const Rows& y, const Rows& z) const {
     const double h = s.inv_2h;
@@ -54,10 +68,13 @@ struct ShiftLower {
     double phi = c[0];
     double dpx = h * (c[1] - c[-1]), dpy = h * (c[sy] - c[-sy]), dpz = h * (c[sz] - c[-sz]);
     if constexpr (Hole) {
-      phi += s.puncture_phi[idx];
-      dpx += s.dphi_puncture[0][idx];
-      dpy += s.dphi_puncture[1][idx];
-      dpz += s.dphi_puncture[2][idx];
+      // Mhat/(2 r) and its gradient -Mhat (x - xhat_BH)/(2 r^3); the puncture is never on a point.
+      const double rx = s.x0 + s.dx * i, inv_r = 1.0 / std::sqrt(rx * rx + rho2);
+      const double m_r = s.half_mass * inv_r, m_r3 = m_r * inv_r * inv_r;
+      phi += m_r;
+      dpx -= m_r3 * rx;
+      dpy -= m_r3 * dy;
+      dpz -= m_r3 * dz;
     }
     const double inv_phi = 1.0 / phi;
     const double alpha = e[0] * inv_phi;

@@ -93,7 +93,7 @@ void declare(core::PluginBuilder& b) {
       .after("hamiltonian.setup")
       .after("lapse.setup")
       .after("momentum.setup")
-      .doc("check chi, puncture_phi, eta, ahat; register beta (and the excision mask); publish the equation");
+      .doc("check chi, eta, ahat; register beta (and the excision mask); publish the equation");
 
   b.schedule(Bin::solve, "excision", [state](Context& ctx) {
      const ExcisionReport r = state->equation->update_puncture();
@@ -107,7 +107,7 @@ void declare(core::PluginBuilder& b) {
      ctx.set_scalar("shift_excision_points", r.finest_points);
    })
       .before("multigrid.solve")
-      .doc("puncture part of dphi and the excision mask on every level when the puncture moved; beta = beta_0 on "
+      .doc("the excision mask on every level when the puncture moved; beta = beta_0 on "
            "every excised point");
 }
 

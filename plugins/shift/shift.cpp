@@ -18,9 +18,6 @@ namespace {
 const std::vector<TensorKind> scalar{TensorKind::scalar};
 const std::vector<TensorKind> vector{TensorKind::vector_x, TensorKind::vector_y, TensorKind::vector_z};
 
-/// The puncture part of dphi, filled by this plugin on every level.
-constexpr const char* dphi_puncture_field = "shift.dphi_puncture";
-
 /// Calls fn(std::bool_constant<hole>{}, std::bool_constant<matter>{}).
 template <class Fn>
 void with_kind(bool hole, bool matter, Fn&& fn) {
@@ -44,7 +41,6 @@ struct Needed {
   const char* owner;
 };
 constexpr Needed needed[] = {{fields::chi, 1, "hamiltonian"},
-                             {fields::puncture_phi, 1, "hamiltonian"},
                              {fields::eta, 1, "lapse"},
                              {fields::ahat, 6, "momentum"}};
 
@@ -57,7 +53,7 @@ ShiftEquation::ShiftEquation(Grid& grid, const Fluid* fluid, const Puncture* pun
   for (const Needed& f : needed) {
     if (!grid.has_field(f.name))
       throw core::InputError(fmt::format(
-          "shift: the field '{}' is missing; the shift equation reads chi and puncture_phi (plugin hamiltonian), eta "
+          "shift: the field '{}' is missing; the shift equation reads chi (plugin hamiltonian), eta "
           "(plugin lapse) and ahat (plugin momentum): add the plugin {}",
           f.name, f.owner));
     const FieldInfo& info = grid.field_info(grid.field_id(f.name));
@@ -67,7 +63,6 @@ ShiftEquation::ShiftEquation(Grid& grid, const Fluid* fluid, const Puncture* pun
   }
   chi_ = grid.field_id(fields::chi);
   eta_ = grid.field_id(fields::eta);
-  puncture_phi_ = grid.field_id(fields::puncture_phi);
   ahat_ = grid.field_id(fields::ahat);
   beta_ = grid.add_field(fields::shift, vector, core::TimeParity::odd);
   if (fluid_) {
@@ -87,8 +82,6 @@ ShiftEquation::ShiftEquation(Grid& grid, const Fluid* fluid, const Puncture* pun
   }
   if (puncture_) {
     check_puncture<core::InputError>(puncture_->bare_mass(), puncture_->position(), puncture_->momentum());
-    // d_i of a scalar: vector kinds give the right parities (d_z odd in z).
-    dphi_ = grid.add_field(dphi_puncture_field, vector);
     const Cube cube = excision(puncture_->bare_mass(), puncture_->position());
     // The grid builds the plain cube on every level; update_puncture() rewrites it with the
     // nearest-point rule and whenever the puncture moves.
@@ -133,9 +126,8 @@ OuterBoundary ShiftEquation::boundary() const {
 }
 
 std::vector<std::string> ShiftEquation::coefficients() const {
-  // chi and eta are the unknowns of hamiltonian and lapse; puncture_phi, ahat and the puncture part
-  // of dphi are filled on every level by their owners (analytically where they can), so they are
-  // not restricted.
+  // chi and eta are the unknowns of hamiltonian and lapse; ahat is filled on every level by its
+  // owner and the puncture's terms are computed in the kernel, so none of them is restricted.
   if (!fluid_) return {};
   return {fields::rho0, fields::enthalpy, fields::fluid_velocity};
 }
@@ -147,9 +139,11 @@ Sources ShiftEquation::sources(int level) const {
   s.eta = grid_.data(eta_, 0, level);
   for (int c = 0; c < 6; ++c) s.ahat[c] = grid_.data(ahat_, c, level);
   if (puncture_) {
-    s.puncture_phi = grid_.data(puncture_phi_, 0, level);
-    for (int c = 0; c < 3; ++c) s.dphi_puncture[c] = grid_.data(dphi_, c, level);
+    const std::array<double, 3> x_bh = puncture_->position();
+    s.half_mass = 0.5 * puncture_->bare_mass();
+    s.x0 = lv.x(0) - x_bh[0], s.y0 = lv.y(0) - x_bh[1], s.z0 = lv.z(0) - x_bh[2];
   }
+  s.dx = lv.dx;
   if (fluid_) {
     s.rho0 = grid_.data(rho0_, 0, level);
     s.enthalpy = grid_.data(enthalpy_, 0, level);
@@ -198,30 +192,6 @@ void ShiftEquation::relax(const RelaxArgs& args) const {
   });
 }
 
-void ShiftEquation::fill_dphi_puncture(double mass, const std::array<double, 3>& position) {
-  for (int l = 0; l < grid_.num_levels(); ++l) {
-    const Level& lv = grid_.level(l);
-    double* d[3] = {grid_.data(dphi_, 0, l), grid_.data(dphi_, 1, l), grid_.data(dphi_, 2, l)};
-    for (int k = 0; k < lv.nz; ++k)
-      for (int j = 0; j < lv.ny; ++j)
-        for (int i = 0; i < lv.nx; ++i) {
-          const double dx = lv.x(i) - position[0], dy = lv.y(j) - position[1], dz = lv.z(k) - position[2];
-          const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-          // The puncture plugin keeps the hole off the points; a bug there must not pass silently.
-          if (!(r > 1e-6 * lv.dx))
-            throw core::RunFailure(fmt::format("shift: the puncture ({}, {}, {}) lies on grid point ({}, {}, {}) of level {}",
-                                               position[0], position[1], position[2], i, j, k, l));
-          // dphi_i = -Mhat n_i / (2 r^2) = -Mhat (x_i - xhat_BH_i) / (2 r^3)
-          const double c = -0.5 * mass / (r * r * r);
-          const std::ptrdiff_t p = lv.at(i, j, k);
-          d[0][p] = c * dx;
-          d[1][p] = c * dy;
-          d[2][p] = c * dz;
-        }
-    grid_.fill_ghosts(dphi_, l);
-  }
-}
-
 ExcisionReport ShiftEquation::update_puncture() {
   ExcisionReport report;
   if (!puncture_) return report;
@@ -233,7 +203,6 @@ ExcisionReport ShiftEquation::update_puncture() {
   const int coarsest = grid_.num_levels() - 1;
   if (!built_ || mass != last_mass_ || position != last_position_) {
     report.changed = true;
-    fill_dphi_puncture(mass, position);
     for (int l = 0; l <= coarsest; ++l) {
       const Level& lv = grid_.level(l);
       // The grid builds a mask once from its region; this cube moves with the hole and holds the

@@ -27,7 +27,7 @@ struct Settings {
 
 /// What one refresh of the puncture terms did, for the log and the scalars.
 struct ExcisionReport {
-  bool changed = false;            ///< mask and puncture terms were rebuilt
+  bool changed = false;            ///< the mask was rebuilt
   bool coarsest_changed = false;   ///< the coarsest level's held points differ from the last build
   int finest_points = 0;           ///< excised stored points of the finest level
   std::vector<int> nearest_levels; ///< levels where the cube holds no point (nearest point held)
@@ -37,8 +37,7 @@ struct ExcisionReport {
 
 class ShiftEquation final : public EllipticEquation {
  public:
-  /// Registers beta (and, with a puncture, the puncture part of dphi and the excision mask); reads
-  /// chi, puncture_phi, eta and ahat, which other plugins register: core::InputError naming the
+  /// Registers beta (and, with a puncture, the excision mask); reads chi, eta and ahat, which other plugins register: core::InputError naming the
   /// missing field and its plugin otherwise. With a puncture: InputError for Mhat_BH <= 0, |v| >= 1
   /// or a cube reaching the outer boundary. fluid and puncture may be null (vacuum, no hole).
   ShiftEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, Settings settings);
@@ -51,8 +50,7 @@ class ShiftEquation final : public EllipticEquation {
   void residual(const RelaxArgs& args, double* const* out) const override;
   void relax(const RelaxArgs& args) const override;
 
-  /// Before every solve: when the puncture changed, refill the puncture part of dphi on every level
-  /// and rebuild the excision mask on every level; then set beta = beta_0 at every excised point of
+  /// Before every solve: when the puncture changed, rebuild the excision mask on every level; then set beta = beta_0 at every excised point of
   /// every level. core::RunFailure for a puncture that became invalid (the cube reaching the
   /// boundary, Mhat <= 0, |v| >= 1). Without a puncture it does nothing.
   ExcisionReport update_puncture();
@@ -64,16 +62,15 @@ class ShiftEquation final : public EllipticEquation {
   Cube excision(double mass, const std::array<double, 3>& position) const;
   template <class E>
   void check_puncture(double mass, const std::array<double, 3>& position, const std::array<double, 3>& momentum) const;
-  void fill_dphi_puncture(double mass, const std::array<double, 3>& position);
 
   Grid& grid_;
   const Fluid* fluid_;
   const Puncture* puncture_;
   Settings settings_;
-  int beta_ = -1, chi_ = -1, eta_ = -1, puncture_phi_ = -1, ahat_ = -1;
+  int beta_ = -1, chi_ = -1, eta_ = -1, ahat_ = -1;
   int rho0_ = -1, enthalpy_ = -1, velocity_ = -1;
-  int dphi_ = -1, mask_ = -1;
-  // The puncture the terms and mask were last built for.
+  int mask_ = -1;
+  // The puncture the mask was last built for.
   bool built_ = false;
   double last_mass_ = 0;
   std::array<double, 3> last_position_{};

@@ -43,23 +43,23 @@ struct Quadratic {
 
 struct PointSetup {
   Level lv = make_level(4, 0.1, false);
-  std::vector<double> beta[3], chi, eta, pphi, dphi_p[3], ahat[6], rho0, h, vel[3];
+  std::vector<double> beta[3], chi, eta, ahat[6], rho0, h, vel[3];
   Quadratic qb[3] = {{0.10, {0.3, -0.2, 0.1}, {{0.5, 0.2, -0.1}, {0.2, -0.4, 0.3}, {-0.1, 0.3, 0.6}}},
                      {-0.05, {0.1, 0.4, -0.3}, {{-0.2, 0.1, 0.0}, {0.1, 0.3, -0.2}, {0.0, -0.2, 0.1}}},
                      {0.02, {-0.25, 0.15, 0.35}, {{0.1, -0.3, 0.2}, {-0.3, 0.2, 0.1}, {0.2, 0.1, -0.5}}}};
   Quadratic qchi{1.1, {0.2, -0.1, 0.05}, {{0.3, 0.1, 0.0}, {0.1, -0.2, 0.1}, {0.0, 0.1, 0.4}}};
   Quadratic qeta{0.8, {-0.15, 0.1, 0.2}, {{-0.2, 0.0, 0.1}, {0.0, 0.3, -0.1}, {0.1, -0.1, 0.2}}};
-  // The point (i, j, k) = (2, 2, 2) at the origin, and the values there.
+  // The point (i, j, k) = (2, 2, 2) at the origin, and the values there. The hole: bare mass
+  // 0.6 at distance 1, so that its phi is 0.3 and its dphi -0.3 (x - xhat_BH).
   std::ptrdiff_t idx = lv.at(2, 2, 2);
-  double punc = 0.3, dpp[3] = {-0.4, 0.25, -0.1};
+  double mass = 0.6, x_bh[3] = {0.64, -0.48, 0.6};
   double a[6] = {0.2, -0.1, 0.05, 0.15, 0.3, -0.35};
   double r0 = 0.07, hh = 1.14, V[3] = {0.05, -0.1, 0.02};
 
   PointSetup() {
     auto make = [&](std::vector<double>& f) { f.assign(lv.size, 0.0); };
     for (auto& f : beta) make(f);
-    for (auto* f : {&chi, &eta, &pphi, &rho0, &h}) make(*f);
-    for (auto& f : dphi_p) make(f);
+    for (auto* f : {&chi, &eta, &rho0, &h}) make(*f);
     for (auto& f : ahat) make(f);
     for (auto& f : vel) make(f);
     for (int k = -1; k <= lv.nz; ++k)
@@ -71,8 +71,7 @@ struct PointSetup {
           chi[p] = qchi(x, y, z);
           eta[p] = qeta(x, y, z);
         }
-    pphi[idx] = punc;
-    for (int c = 0; c < 3; ++c) dphi_p[c][idx] = dpp[c], vel[c][idx] = V[c];
+    for (int c = 0; c < 3; ++c) vel[c][idx] = V[c];
     for (int c = 0; c < 6; ++c) ahat[c][idx] = a[c];
     rho0[idx] = r0;
     h[idx] = hh;
@@ -82,8 +81,10 @@ struct PointSetup {
     Sources s;
     s.chi = chi.data();
     s.eta = eta.data();
-    s.puncture_phi = pphi.data();
-    for (int c = 0; c < 3; ++c) s.dphi_puncture[c] = dphi_p[c].data(), s.velocity[c] = vel[c].data();
+    s.half_mass = 0.5 * mass;
+    s.x0 = lv.x(0) - x_bh[0], s.y0 = lv.y(0) - x_bh[1], s.z0 = lv.z(0) - x_bh[2];
+    s.dx = lv.dx;
+    for (int c = 0; c < 3; ++c) s.velocity[c] = vel[c].data();
     for (int c = 0; c < 6; ++c) s.ahat[c] = ahat[c].data();
     s.rho0 = rho0.data();
     s.enthalpy = h.data();
@@ -101,7 +102,7 @@ struct PointSetup {
     const stencil::Rows x = stencil::rows_at(beta[0].data() + p, lv.sy, lv.sz),
                         y = stencil::rows_at(beta[1].data() + p, lv.sy, lv.sz),
                         z = stencil::rows_at(beta[2].data() + p, lv.sy, lv.sz);
-    return ShiftLower<Hole, Matter>{sources(sigma, scale)}.at(idx, 2, x, y, z);
+    return ShiftLower<Hole, Matter>{sources(sigma, scale)}.row(2, 2).at(idx, 2, x, y, z);
   }
 
   /// -RHS of eq. mindist_hat written out from the formula, with exact derivatives.
@@ -110,11 +111,14 @@ struct PointSetup {
     double db[3][3];  // db[i][j] = d_j beta^i
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) db[i][j] = qb[i].d(j, o);
+    // The puncture's phi = Mhat/(2 r) and dphi = -Mhat (x - xhat_BH)/(2 r^3) at the origin.
+    const double r = std::sqrt(x_bh[0] * x_bh[0] + x_bh[1] * x_bh[1] + x_bh[2] * x_bh[2]);
+    const double punc = mass / (2 * r);
     const double phi = qchi(0, 0, 0) + (hole ? punc : 0.0);
     double dphi[3], dalpha[3];
     const double alpha = qeta(0, 0, 0) / phi;
     for (int j = 0; j < 3; ++j) {
-      dphi[j] = qchi.d(j, o) + (hole ? dpp[j] : 0.0);
+      dphi[j] = qchi.d(j, o) + (hole ? mass * x_bh[j] / (2 * r * r * r) : 0.0);
       dalpha[j] = (qeta.d(j, o) - alpha * dphi[j]) / phi;
     }
     const double A[3][3] = {{a[0], a[1], a[2]}, {a[1], a[3], a[4]}, {a[2], a[4], a[5]}};
@@ -168,12 +172,10 @@ TEST_CASE("plugins.shift.point_term_stays_finite_next_to_the_hole", "[plugins][s
   // r = 1e-12, so excised points (whose residual the kernel multiplies by 0) never produce NaN.
   PointSetup ps;
   for (double r : {1e-2, 1e-6, 1e-12}) {
-    const double m = 0.5;
-    ps.punc = m / (2 * r);
+    ps.mass = 0.5;
     const double n[3] = {0.6, 0.8, 0};
-    for (int c = 0; c < 3; ++c) ps.dphi_p[c][ps.idx] = -m * n[c] / (2 * r * r);
+    for (int c = 0; c < 3; ++c) ps.x_bh[c] = -r * n[c];  // the point at r n from the hole
     for (int c = 0; c < 6; ++c) ps.ahat[c][ps.idx] = ps.a[c] / (r * r);  // Bowen-York ~ P/r^2
-    ps.pphi[ps.idx] = ps.punc;
     ps.rho0[ps.idx] = 0;
     const stencil::Triple t = ps.term<true, true>(1.0, 1.0);
     INFO("r = " << r);

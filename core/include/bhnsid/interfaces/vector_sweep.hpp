@@ -10,7 +10,9 @@
 //     Triple at(std::ptrdiff_t idx, int i, const Rows& x, const Rows& y, const Rows& z) const;
 //   };
 // (idx: the array index of the point; i: its index along the row; x, y, z: the rows of V's three
-// components around it, see gradient()). Used by the momentum and shift plugins.
+// components around it, see gradient()). A Lower that needs the row's coordinates (the shift's
+// analytic puncture terms) also has `RowLower row(int j, int k) const`, an object with the same
+// at(), bound once per row. Used by the momentum and shift plugins.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -62,6 +64,15 @@ inline Rows rows_at(const double* f, std::ptrdiff_t sy, std::ptrdiff_t sz) {
   return {inv_2h * (f.c[i + 1] - f.c[i - 1]), inv_2h * (f.yp[i] - f.ym[i]), inv_2h * (f.zp[i] - f.zm[i])};
 }
 
+/// lower.row(j, k) where the Lower has one (see the top of this file), else lower itself.
+template <class Lower>
+[[gnu::always_inline]] inline decltype(auto) bind_row(const Lower& lower, int j, int k) {
+  if constexpr (requires { lower.row(j, k); })
+    return lower.row(j, k);
+  else
+    return (lower);
+}
+
 /// out^a = rhs^a - L(V)^a at every interior point (rhs nullptr: zero), 0 where fixed != 0.
 template <bool HasRhs, bool Masked, class Lower>
 void vector_residual(const Level& lv, ConstComponents v, const double* const* rhs, const std::uint8_t* fixed,
@@ -76,11 +87,12 @@ void vector_residual(const Level& lv, ConstComponents v, const double* const* rh
     [[maybe_unused]] const double *fx = nullptr, *fy = nullptr, *fz = nullptr;
     if constexpr (HasRhs) fx = rhs[0] + p, fy = rhs[1] + p, fz = rhs[2] + p;
     [[maybe_unused]] const std::uint8_t* m = fixed + p;
+    const auto& row_lower = bind_row(lower, j, k);
     with_row_mask<Masked>(fixed, p, end, [&](auto masked_row) {
 #pragma omp simd
       for (int i = 1; i < end; ++i) {
         const Triple l = principal(x, y, z, i);
-        const Triple n = lower.at(p + i, i, x, y, z);
+        const Triple n = row_lower.at(p + i, i, x, y, z);
         Triple r{-(ih2 * l.x + n.x), -(ih2 * l.y + n.y), -(ih2 * l.z + n.z)};
         if constexpr (HasRhs) r.x += fx[i], r.y += fy[i], r.z += fz[i];
         double keep = 1.0;
@@ -142,12 +154,13 @@ void vector_relax(const Level& lv, Components v, const double* const* rhs, const
       [[maybe_unused]] const double *fx = nullptr, *fy = nullptr, *fz = nullptr;
       if constexpr (HasRhs) fx = rhs[0] + p, fy = rhs[1] + p, fz = rhs[2] + p;
       [[maybe_unused]] const std::uint8_t* m = fixed + p;
+      const auto& row_lower = bind_row(lower, j, k);
       with_row_mask<Masked>(fixed, p, end, [&](auto masked_row) {
         // Within a row the colour's points read only the other colour: independent iterations.
 #pragma omp simd
         for (int i = box.i0 + ((box.i0 + j + k + colour) & 1); i < i1; i += 2) {
           const Triple l = principal(x, y, z, i);
-          const Triple n = lower.at(p + i, i, x, y, z);
+          const Triple n = row_lower.at(p + i, i, x, y, z);
           Triple r{ih2 * l.x + n.x, ih2 * l.y + n.y, ih2 * l.z + n.z};
           if constexpr (HasRhs) r.x -= fx[i], r.y -= fy[i], r.z -= fz[i];
           double g = factor;
