@@ -52,8 +52,11 @@ std::map<std::string, double> deviations(const Grid& grid) {
   auto largest = [&](const double* v, double offset) {
     double m = 0;
     for (int k = 0; k < lv.nz; ++k)
-      for (int j = 0; j < lv.ny; ++j)
-        for (int i = 0; i < lv.nx; ++i) m = std::max(m, std::fabs(v[lv.at(i, j, k)] - offset));
+      for (int j = 0; j < lv.ny; ++j) {
+        const double* row = v + lv.at(0, j, k);
+#pragma omp simd reduction(max : m)
+        for (int i = 0; i < lv.nx; ++i) m = std::max(m, std::fabs(row[i] - offset));
+      }
     return m;
   };
   std::map<std::string, double> out;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 #include <vector>
 
 #include "bhnsid/core/errors.hpp"
@@ -41,26 +42,43 @@ Masses masses(const Grid& grid, const Inputs& in) {
   if (in.moving && !eta)
     throw core::RunFailure("diagnostics: moving matter needs eta (the lapse plugin) for its Lorentz factor");
   const MatterArrays mat = matter_arrays(grid, in.sigma, in.moving, 0);
-  std::vector<double> rest(lv.size, 0.0), energy(lv.size, 0.0);
-  for (int k = 0; k < lv.nz; ++k)
-    for (int j = 0; j < lv.ny; ++j)
-      for (int i = 0; i < lv.nx; ++i) {
-        const std::ptrdiff_t p = lv.at(i, j, k);
-        const double phi = (punc ? punc[p] : 0.0) + chi[p];
-        const double phi2 = phi * phi, phi4 = phi2 * phi2;
-        double e = aa ? aa[p] / (16.0 * std::numbers::pi * phi4 * phi2 * phi) : 0.0;
-        if (mat.rho0[p] > 0) {
-          const double lorentz2 =
-              in.moving ? lorentz_squared(phi, eta[p], mat.coordinate_velocity(0, p), mat.coordinate_velocity(1, p),
-                                          mat.coordinate_velocity(2, p))
-                        : 1.0;
-          e += mat.sigma2 * phi4 * phi * matter_projections(mat.rho0[p], mat.press[p], mat.enthalpy[p], lorentz2).energy;
-          rest[p] = mat.rho0[p] * std::sqrt(lorentz2) * phi4 * phi2;
+  std::vector<double> energy(lv.size, 0.0), rest(in.matter ? lv.size : 0, 0.0);
+  // Per row, the matter term selected where rho0 > 0 (not branched on) and the switches
+  // compile-time, so that the loop vectorises.
+  auto densities = [&](auto matter, auto moving) {
+    constexpr bool Matter = decltype(matter)::value, Moving = decltype(moving)::value;
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < lv.nz; ++k)
+      for (int j = 0; j < lv.ny; ++j) {
+        const std::ptrdiff_t p0 = lv.at(0, j, k);
+#pragma omp simd
+        for (std::ptrdiff_t p = p0; p < p0 + lv.nx; ++p) {
+          const double phi = (punc ? punc[p] : 0.0) + chi[p];
+          const double phi2 = phi * phi, phi4 = phi2 * phi2;
+          double e = aa ? aa[p] / (16.0 * std::numbers::pi * phi4 * phi2 * phi) : 0.0;
+          if constexpr (Matter) {
+            double lorentz2 = 1.0;
+            if constexpr (Moving)
+              lorentz2 = lorentz_squared(phi, eta[p], mat.coordinate_velocity(0, p), mat.coordinate_velocity(1, p),
+                                         mat.coordinate_velocity(2, p));
+            const bool in_matter = mat.rho0[p] > 0;
+            const double e_matter =
+                mat.sigma2 * phi4 * phi * matter_projections(mat.rho0[p], mat.press[p], mat.enthalpy[p], lorentz2).energy;
+            e += in_matter ? e_matter : 0.0;
+            rest[static_cast<std::size_t>(p)] = in_matter ? mat.rho0[p] * std::sqrt(lorentz2) * phi4 * phi2 : 0.0;
+          }
+          energy[static_cast<std::size_t>(p)] = e;
         }
-        energy[p] = e;
       }
+  };
+  if (!in.matter)
+    densities(std::false_type{}, std::false_type{});
+  else if (in.moving)
+    densities(std::true_type{}, std::true_type{});
+  else
+    densities(std::true_type{}, std::false_type{});
   Masses m;
-  m.rest_mass = in.sigma * mat.sigma2 * grid.integrate(rest.data(), Parity{}, 0);
+  m.rest_mass = in.matter ? in.sigma * mat.sigma2 * grid.integrate(rest.data(), Parity{}, 0) : 0.0;
   m.adm_mass_volume = in.sigma * (in.bh_bare_mass + grid.integrate(energy.data(), Parity{}, 0));
   m.adm_mass_falloff = in.sigma * (in.bh_bare_mass + 2.0 * falloff_coefficient(grid, chi, in.centre));
   return m;

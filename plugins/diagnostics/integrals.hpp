@@ -22,6 +22,7 @@ struct Inputs {
   double bh_bare_mass = 0;          ///< Mhat_BH, 0 without a hole
   std::array<double, 3> centre{};   ///< centre of the 1/r falloff of chi (the Robin centre)
   bool moving = false;              ///< compute W from the velocity fields (else W = 1)
+  bool matter = true;               ///< false: no fluid, rest mass 0 and no matter term
 };
 
 Masses masses(const Grid& grid, const Inputs& in);

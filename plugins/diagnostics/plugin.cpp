@@ -29,6 +29,7 @@ void declare(core::PluginBuilder& b) {
      in.bh_bare_mass = puncture ? puncture->bare_mass() : 0.0;
      in.centre = fluid ? fluid->centre() : puncture ? puncture->position() : std::array<double, 3>{};
      in.moving = fluid && fluid->moving();
+     in.matter = fluid != nullptr;
      const Masses m = masses(grid, in);
      // With a net momentum (a single boosted hole) the AA source reaches beyond the cube like r^-4.
      const double outside = puncture ? outside_aa_mass(grid, in.sigma, puncture->position()) : 0.0;
