@@ -1,5 +1,6 @@
 #include "transfer.hpp"
 
+#include <algorithm>
 #include <vector>
 
 namespace bhnsid::multigrid {
@@ -120,10 +121,9 @@ void prolong_correction(const Level& cl, const Level& fl, const double* c, const
           for (int i = ib + (ib & 1); i < ie; i += 2) out[i] += r[i / 2];
           for (int i = ib | 1; i < ie; i += 2) out[i] += 0.5 * (r[i / 2] + r[i / 2 + 1]);
         } else {
-          for (int i = ib; i < ie; ++i) {
-            const double e = (i & 1) ? 0.5 * (r[i / 2] + r[i / 2 + 1]) : r[i / 2];
-            if (!held[i]) out[i] += e;
-          }
+          // The same with the held points selected away (not branched over: the loops vectorise).
+          for (int i = ib + (ib & 1); i < ie; i += 2) out[i] += held[i] ? 0.0 : r[i / 2];
+          for (int i = ib | 1; i < ie; i += 2) out[i] += held[i] ? 0.0 : 0.5 * (r[i / 2] + r[i / 2 + 1]);
         }
       }
     }
@@ -173,37 +173,47 @@ void prolong_correction_cubic(const Level& cl, const Level& fl, const double* c,
 #pragma omp for schedule(static)
     for (int k = k0; k < k1; ++k) {
       const AxisWeights wz = axis_weights(k, cl.nz - 1);
-      for (int J = 0; J < cl.ny; ++J)
-        for (int I = 0; I < cl.nx; ++I) {
-          double v = 0;
-          for (int t = 0; t < wz.count; ++t) {
-            const std::ptrdiff_t p = cl.at(I, J, wz.first + t);
-            v += wz.w[t] * (c[p] - c_old[p]);
-          }
-          plane[static_cast<std::size_t>(J) * static_cast<std::size_t>(cl.nx) + static_cast<std::size_t>(I)] = v;
+      const int nx = cl.nx;
+      // Row by row, one coarse plane (or row) at a time: unit-stride loops that vectorise.
+      for (int J = 0; J < cl.ny; ++J) {
+        double* pl = plane.data() + static_cast<std::size_t>(J) * static_cast<std::size_t>(nx);
+        for (int I = 0; I < nx; ++I) pl[I] = 0;
+        for (int t = 0; t < wz.count; ++t) {
+          const double *a = c + cl.at(0, J, wz.first + t), *b = c_old + cl.at(0, J, wz.first + t), w = wz.w[t];
+#pragma omp simd
+          for (int I = 0; I < nx; ++I) pl[I] += w * (a[I] - b[I]);
         }
+      }
       const bool face_plane = k == fl.nz - 1 || (k == 0 && !fl.z_symmetry);
       for (int j = 0; j < fl.ny; ++j) {
         const bool face_row = face_plane || j == 0 || j == fl.ny - 1;
         if (face_row && !faces) continue;
         const AxisWeights wy = axis_weights(j, cl.ny - 1);
-        for (int I = 0; I < cl.nx; ++I) {
-          double v = 0;
-          for (int t = 0; t < wy.count; ++t)
-            v += wy.w[t] * plane[static_cast<std::size_t>(wy.first + t) * static_cast<std::size_t>(cl.nx) +
-                                 static_cast<std::size_t>(I)];
-          row[static_cast<std::size_t>(I)] = v;
+        double* r = row.data();
+        for (int I = 0; I < nx; ++I) r[I] = 0;
+        for (int t = 0; t < wy.count; ++t) {
+          const double* pl = plane.data() + static_cast<std::size_t>(wy.first + t) * static_cast<std::size_t>(nx);
+          const double w = wy.w[t];
+#pragma omp simd
+          for (int I = 0; I < nx; ++I) r[I] += w * pl[I];
         }
         double* out = f + fl.at(0, j, k);
         const std::uint8_t* held = fixed ? fixed + fl.at(0, j, k) : nullptr;
         const int ib = (face_row || faces) ? 0 : 1, ie = (face_row || faces) ? fl.nx : fl.nx - 1;
-        for (int i = ib; i < ie; ++i) {
-          if (held && held[i]) continue;
-          const AxisWeights wx = axis_weights(i, cl.nx - 1);
-          double e = 0;
-          for (int t = 0; t < wx.count; ++t) e += wx.w[t] * row[static_cast<std::size_t>(wx.first + t)];
-          out[i] += e;
+        auto add = [&](int i, double e) { out[i] += held && held[i] ? 0.0 : e; };
+        // Along x: even points on coarse points; odd ones cubic (-1, 9, 9, -1)/16 where the four
+        // coarse points exist, linear next to the ends (axis_weights).
+        const int last = nx - 1;
+        for (int i = ib + (ib & 1); i < ie; i += 2) add(i, r[i / 2]);
+        auto linear = [&](int i) { add(i, 0.5 * (r[i / 2] + r[i / 2 + 1])); };
+        // Odd i with 1 <= i/2 <= last - 2 take the cubic: i in [3, 2 last - 2).
+        const int odd0 = ib | 1, cubic0 = std::max(odd0, 3), cubic1 = std::min(ie, 2 * last - 2);
+        for (int i = odd0; i < std::min(cubic0, ie); i += 2) linear(i);
+        for (int i = cubic0; i < cubic1; i += 2) {
+          const int I = i / 2;
+          add(i, (9.0 * (r[I] + r[I + 1]) - (r[I - 1] + r[I + 2])) / 16.0);
         }
+        for (int i = std::max(cubic1 | 1, odd0); i < ie; i += 2) linear(i);
       }
     }
   }
