@@ -15,13 +15,15 @@ namespace {
 const std::vector<TensorKind> scalar{TensorKind::scalar};
 const std::vector<TensorKind> vector{TensorKind::vector_x, TensorKind::vector_y, TensorKind::vector_z};
 
-/// Calls fn(std::bool_constant<moving>{}).
+/// Calls fn(std::bool_constant<moving>{}, std::bool_constant<matter>{}) (moving implies matter).
 template <class Fn>
-void with_motion(bool moving, Fn&& fn) {
+void with_motion(bool matter, bool moving, Fn&& fn) {
   if (moving)
-    fn(std::true_type{});
+    fn(std::true_type{}, std::true_type{});
+  else if (matter)
+    fn(std::false_type{}, std::true_type{});
   else
-    fn(std::false_type{});
+    fn(std::false_type{}, std::false_type{});
 }
 
 }  // namespace
@@ -76,8 +78,9 @@ void HamiltonianEquation::residual(const RelaxArgs& args, double* const* out) co
   const double* chi = grid_.data(chi_, 0, l);
   const double* rhs = args.rhs ? args.rhs[0] : nullptr;
   const Sources s = sources(l);
-  with_motion(moving(), [&](auto m) {
-    stencil::scalar_residual_any(grid_.level(l), chi, rhs, args.fixed, out[0], HamiltonianTerm<decltype(m)::value>{s});
+  with_motion(fluid_ != nullptr, moving(), [&](auto m, auto matter) {
+    stencil::scalar_residual_any(grid_.level(l), chi, rhs, args.fixed, out[0],
+                                 HamiltonianTerm<decltype(m)::value, decltype(matter)::value>{s});
   });
 }
 
@@ -87,9 +90,9 @@ void HamiltonianEquation::relax(const RelaxArgs& args) const {
   const double* rhs = args.rhs ? args.rhs[0] : nullptr;
   const Sources s = sources(l);
   const stencil::Mirror mirror = [this, l] { grid_.fill_ghosts(chi_, l); };
-  with_motion(moving(), [&](auto m) {
+  with_motion(fluid_ != nullptr, moving(), [&](auto m, auto matter) {
     stencil::scalar_relax_any(grid_.level(l), chi, rhs, args.fixed, args.omega, mirror,
-                              HamiltonianTerm<decltype(m)::value>{s});
+                              HamiltonianTerm<decltype(m)::value, decltype(matter)::value>{s});
   });
 }
 

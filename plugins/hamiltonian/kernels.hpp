@@ -37,7 +37,8 @@ inline double lorentz2_at(const Sources& s, std::ptrdiff_t idx, double phi) {
 /// N(chi) = (1/8) phi^-7 AA + 2 pi sigma^2 phi^5 rho_E and dN/dchi at fixed W. phi^-1 is formed as
 /// 1/(puncture_phi + chi), which is regular (-> 0) at the puncture, so phi^-7 AA ~ r^3 stays finite
 /// however close a point comes to the hole (§2.1); the puncture itself is never a grid point.
-template <bool Moving>
+/// Matter = false (no fluid): the matter term and its three arrays are left out of the sweep.
+template <bool Moving, bool Matter = true>
 struct HamiltonianTerm {
   static constexpr bool linear = false;
   Sources s;
@@ -48,17 +49,19 @@ struct HamiltonianTerm {
     const double inv7 = inv4 * inv_phi * inv_phi * inv_phi;
     const double aa = s.aa[idx];
     double value = 0.125 * aa * inv7, slope = -0.875 * aa * inv7 * inv_phi;
-    // The matter term is formed at every point and selected, not branched on: a branch keeps GCC
-    // from vectorising the sweep. Outside the star (rho0 = 0) W may be NaN (a superluminal
-    // corotation velocity far out); the select drops it.
-    const MatterArrays& m = s.matter;
-    const double rho0 = m.rho0[idx];
-    const double e = matter_projections(rho0, m.press[idx], m.enthalpy[idx], lorentz2_at<Moving>(s, idx, phi)).energy;
-    const double phi2 = phi * phi;
-    const double c_matter = 2.0 * std::numbers::pi * m.sigma2 * s.matter_scale * e * (phi2 * phi2);
-    const double c = rho0 > 0 ? c_matter : 0.0;
-    value += c * phi;
-    slope += 5.0 * c;
+    if constexpr (Matter) {
+      // The matter term is formed at every point and selected, not branched on: a branch keeps GCC
+      // from vectorising the sweep. Outside the star (rho0 = 0) W may be NaN (a superluminal
+      // corotation velocity far out); the select drops it.
+      const MatterArrays& m = s.matter;
+      const double rho0 = m.rho0[idx];
+      const double e = matter_projections(rho0, m.press[idx], m.enthalpy[idx], lorentz2_at<Moving>(s, idx, phi)).energy;
+      const double phi2 = phi * phi;
+      const double c_matter = 2.0 * std::numbers::pi * m.sigma2 * s.matter_scale * e * (phi2 * phi2);
+      const double c = rho0 > 0 ? c_matter : 0.0;
+      value += c * phi;
+      slope += 5.0 * c;
+    }
     return {value, slope};
   }
 };

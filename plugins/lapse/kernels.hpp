@@ -24,7 +24,8 @@ struct Sources {
 
 /// N(eta) = -eta k(x) and dN/deta = -k at fixed W (W depends on eta only through the velocity,
 /// a small term in the Newton step that the outer solve corrects).
-template <bool Moving>
+/// Matter = false (no fluid): the matter term and its three arrays are left out of the sweep.
+template <bool Moving, bool Matter = true>
 struct LapseTerm {
   static constexpr bool linear = false;
   Sources s;
@@ -33,17 +34,20 @@ struct LapseTerm {
     const double inv_phi = 1.0 / phi;
     const double inv4 = (inv_phi * inv_phi) * (inv_phi * inv_phi);
     double k = 0.875 * s.aa[idx] * inv4 * inv4;
-    // Selected, not branched on, so that the sweep vectorises (see hamiltonian/kernels.hpp).
-    const MatterArrays& m = s.matter;
-    const double rho0 = m.rho0[idx];
-    double lorentz2 = 1.0;
-    if constexpr (Moving)
-      lorentz2 = lorentz_squared(phi, eta, m.coordinate_velocity(0, idx), m.coordinate_velocity(1, idx),
-                                 m.coordinate_velocity(2, idx));
-    const MatterProjections p = matter_projections(rho0, m.press[idx], m.enthalpy[idx], lorentz2);
-    const double phi2 = phi * phi;
-    const double k_matter = 2.0 * std::numbers::pi * m.sigma2 * s.matter_scale * (p.energy + 2.0 * p.trace) * (phi2 * phi2);
-    k += rho0 > 0 ? k_matter : 0.0;
+    if constexpr (Matter) {
+      // Selected, not branched on, so that the sweep vectorises (see hamiltonian/kernels.hpp).
+      const MatterArrays& m = s.matter;
+      const double rho0 = m.rho0[idx];
+      double lorentz2 = 1.0;
+      if constexpr (Moving)
+        lorentz2 = lorentz_squared(phi, eta, m.coordinate_velocity(0, idx), m.coordinate_velocity(1, idx),
+                                   m.coordinate_velocity(2, idx));
+      const MatterProjections p = matter_projections(rho0, m.press[idx], m.enthalpy[idx], lorentz2);
+      const double phi2 = phi * phi;
+      const double k_matter =
+          2.0 * std::numbers::pi * m.sigma2 * s.matter_scale * (p.energy + 2.0 * p.trace) * (phi2 * phi2);
+      k += rho0 > 0 ? k_matter : 0.0;
+    }
     return {-eta * k, -k};
   }
 };

@@ -43,8 +43,10 @@ void LapseEquation::residual(const RelaxArgs& args, double* const* out) const {
   const Sources s = sources(l);
   if (moving())
     stencil::scalar_residual_any(grid_.level(l), eta, rhs, args.fixed, out[0], LapseTerm<true>{s});
-  else
+  else if (fluid_)
     stencil::scalar_residual_any(grid_.level(l), eta, rhs, args.fixed, out[0], LapseTerm<false>{s});
+  else
+    stencil::scalar_residual_any(grid_.level(l), eta, rhs, args.fixed, out[0], LapseTerm<false, false>{s});
 }
 
 void LapseEquation::relax(const RelaxArgs& args) const {
@@ -55,8 +57,10 @@ void LapseEquation::relax(const RelaxArgs& args) const {
   const stencil::Mirror mirror = [this, l] { grid_.fill_ghosts(eta_, l); };
   if (moving())
     stencil::scalar_relax_any(grid_.level(l), eta, rhs, args.fixed, args.omega, mirror, LapseTerm<true>{s});
-  else
+  else if (fluid_)
     stencil::scalar_relax_any(grid_.level(l), eta, rhs, args.fixed, args.omega, mirror, LapseTerm<false>{s});
+  else
+    stencil::scalar_relax_any(grid_.level(l), eta, rhs, args.fixed, args.omega, mirror, LapseTerm<false, false>{s});
 }
 
 }  // namespace bhnsid::lapse
