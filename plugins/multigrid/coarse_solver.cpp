@@ -12,7 +12,7 @@ namespace bhnsid::multigrid {
 
 double* CoarseSolver::value(const Unknown& x, int level, bool residual) {
   const Slot& s = solver_.slots_[static_cast<std::size_t>(x.slot)];
-  return solver_.grid_.data(residual ? s.res : s.u, x.comp, level) + x.point;
+  return (residual ? solver_.res(s, x.comp, level) : solver_.grid_.data(s.u, x.comp, level)) + x.point;
 }
 
 void CoarseSolver::index_unknowns(int level) {
@@ -79,7 +79,7 @@ void CoarseSolver::factorise(int level, const Eigen::VectorXd& r0) {
           any = true;
         }
         if (!any) continue;
-        solver_.fill_ghosts(level, 0);
+        solver_.fill_ghosts(level);
         residual_vector(level, r1);
         for (std::size_t r = 0; r < unknowns_.size(); ++r) {
           const double d = r1[static_cast<Eigen::Index>(r)] - r0[static_cast<Eigen::Index>(r)];
@@ -105,7 +105,7 @@ void CoarseSolver::factorise(int level, const Eigen::VectorXd& r0) {
           if (x.slot != static_cast<int>(si) || x.comp != c || x.i % 5 != ci || x.j % 5 != cj || x.k % 5 != ck) continue;
           *value(x, level, false) -= step[r];
         }
-        solver_.fill_ghosts(level, 0);
+        solver_.fill_ghosts(level);
       }
   }
   const auto n = static_cast<Eigen::Index>(unknowns_.size());
@@ -122,7 +122,7 @@ void CoarseSolver::factorise(int level, const Eigen::VectorXd& r0) {
 
 void CoarseSolver::solve(int level) {
   if (level != level_) index_unknowns(level);
-  solver_.fill_ghosts(level, 0);
+  solver_.fill_ghosts(level);
   Eigen::VectorXd r;
   residual_vector(level, r);
   double norm = r.lpNorm<Eigen::Infinity>();
@@ -137,7 +137,7 @@ void CoarseSolver::solve(int level) {
     // The residual is rhs - L(u), so J_r = -dL/du and the Newton step solves J_r du = -r.
     const Eigen::VectorXd du = lu_.solve(-r);
     for (std::size_t k = 0; k < unknowns_.size(); ++k) *value(unknowns_[k], level, false) += du[static_cast<Eigen::Index>(k)];
-    solver_.fill_ghosts(level, 0);
+    solver_.fill_ghosts(level);
     residual_vector(level, r);
     const double next = r.lpNorm<Eigen::Infinity>();
     if (!std::isfinite(next))

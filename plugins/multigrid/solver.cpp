@@ -17,15 +17,13 @@ namespace bhnsid::multigrid {
 
 using core::RunFailure;
 
-namespace {
-
-enum Which { unknowns, residuals };
-
-}  // namespace
-
 FasSolver::FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations, Settings settings, core::Log log)
     : grid_(grid), settings_(settings), log_(std::move(log)) {
   if (equations.empty()) throw RunFailure("multigrid: no elliptic equation is registered (no equation.* service)");
+  // The finest level's residual is formed, normed and restricted one equation at a time in one
+  // shared array set (a single level keeps one per equation: its direct solve needs them all).
+  const bool shared_fine_residual = grid.num_levels() > 1;
+  int most_components = 1;
   std::set<std::string> unknowns_seen;
   for (EllipticEquation* eq : equations) {
     Slot s;
@@ -46,7 +44,9 @@ FasSolver::FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations
                                     : core::TimeParity::odd;
     // The finest level's right-hand side is zero and its start is never saved.
     s.rhs = grid.add_field("multigrid." + unknown + ".rhs", info.components, tp, core::Storage::coarse_levels);
-    s.res = grid.add_field("multigrid." + unknown + ".res", info.components, tp);
+    s.res = grid.add_field("multigrid." + unknown + ".res", info.components, tp,
+                           shared_fine_residual ? core::Storage::coarse_levels : core::Storage::all_levels);
+    most_components = std::max(most_components, s.ncomp);
     s.old = grid.add_field("multigrid." + unknown + ".old", info.components, tp, core::Storage::coarse_levels);
     s.boundary = eq->boundary();
     if (s.boundary.kind == OuterBoundary::Kind::robin) {
@@ -65,6 +65,11 @@ FasSolver::FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations
     for (const std::string& name : eq->coefficients()) s.coefficients.push_back(grid.field_id(name));
     slots_.push_back(std::move(s));
   }
+  if (shared_fine_residual)
+    fine_residual_ = grid.add_field("multigrid.fine_residual",
+                                    std::vector<core::TensorKind>(static_cast<std::size_t>(most_components),
+                                                                  core::TensorKind::scalar),
+                                    core::TimeParity::even, core::Storage::finest_only);
   const int levels = grid.num_levels();
   rhs_zero_.assign(static_cast<std::size_t>(levels), 1);
   tau_.assign(slots_.size(), 0.0);
@@ -89,9 +94,13 @@ RelaxArgs FasSolver::args(const Slot& s, int l) const {
   return a;
 }
 
-void FasSolver::fill_ghosts(int l, int which) {
+void FasSolver::fill_ghosts(int l) {
   if (!grid_.level(l).z_symmetry) return;
-  for (const Slot& s : slots_) grid_.fill_ghosts(which == unknowns ? s.u : s.res, l);
+  for (const Slot& s : slots_) grid_.fill_ghosts(s.u, l);
+}
+
+double* FasSolver::res(const Slot& s, int c, int l) {
+  return l == 0 && fine_residual_ >= 0 ? grid_.data(fine_residual_, c, 0) : grid_.data(s.res, c, l);
 }
 
 void FasSolver::smooth(int l, int sweeps) {
@@ -109,7 +118,7 @@ void FasSolver::smooth(int l, int sweeps) {
       }
       robin_relax(row_sets_[set][static_cast<std::size_t>(l)], targets);
     }
-    if (!row_sets_.empty()) fill_ghosts(l, unknowns);
+    if (!row_sets_.empty()) fill_ghosts(l);
   };
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     for (const Slot& s : slots_) {
@@ -124,26 +133,28 @@ void FasSolver::smooth(int l, int sweeps) {
   }
 }
 
-void FasSolver::residual(int l) {
+void FasSolver::residual_of(const Slot& s, int l) {
   const Level& lv = grid_.level(l);
-  std::vector<std::vector<RobinResidual>> boundary(row_sets_.size());
-  for (const Slot& s : slots_) {
-    std::vector<double*> out;
-    for (int c = 0; c < s.ncomp; ++c) out.push_back(grid_.data(s.res, c, l));
-    const RelaxArgs a = args(s, l);
-    s.eq->residual(a, out.data());
-    for (int c = 0; c < s.ncomp; ++c) {
-      double* res = out[static_cast<std::size_t>(c)];
-      if (s.rows < 0)
-        zero_faces(lv, res);
-      else
-        boundary[static_cast<std::size_t>(s.rows)].push_back(RobinResidual{
-            grid_.data(s.u, c, l), s.boundary.u_inf[static_cast<std::size_t>(c)], a.rhs ? a.rhs[c] : nullptr, a.fixed, res});
-    }
+  std::vector<double*> out;
+  for (int c = 0; c < s.ncomp; ++c) out.push_back(res(s, c, l));
+  const RelaxArgs a = args(s, l);
+  s.eq->residual(a, out.data());
+  std::vector<RobinResidual> boundary;
+  for (int c = 0; c < s.ncomp; ++c) {
+    double* r = out[static_cast<std::size_t>(c)];
+    if (s.rows < 0)
+      zero_faces(lv, r);
+    else
+      boundary.push_back(
+          RobinResidual{grid_.data(s.u, c, l), s.boundary.u_inf[static_cast<std::size_t>(c)], a.rhs ? a.rhs[c] : nullptr, a.fixed, r});
   }
-  for (std::size_t set = 0; set < boundary.size(); ++set)
-    robin_residual(row_sets_[set][static_cast<std::size_t>(l)], boundary[set]);
-  fill_ghosts(l, residuals);
+  if (!boundary.empty()) robin_residual(rows(s, l), boundary);
+  if (lv.z_symmetry)
+    for (int c = 0; c < s.ncomp; ++c) grid_.fill_ghosts(out[static_cast<std::size_t>(c)], s.parity[static_cast<std::size_t>(c)], l);
+}
+
+void FasSolver::residual(int l) {
+  for (const Slot& s : slots_) residual_of(s, l);
 }
 
 void FasSolver::descend(int l) {
@@ -155,9 +166,10 @@ void FasSolver::descend(int l) {
       restrict_injection(fine, coarse, grid_.data(s.u, c, l), grid_.data(s.u, c, cl));
       std::memcpy(grid_.data(s.old, c, cl), grid_.data(s.u, c, cl), coarse.size * sizeof(double));
     }
-  fill_ghosts(cl, unknowns);
+  fill_ghosts(cl);
   for (std::size_t si = 0; si < slots_.size(); ++si) {
     const Slot& s = slots_[si];
+    residual_of(s, l);
     // -L(u_H) into the coarse residual array, which serves as scratch here.
     std::vector<double*> minus_lu;
     for (int c = 0; c < s.ncomp; ++c) minus_lu.push_back(grid_.data(s.res, c, cl));
@@ -167,7 +179,7 @@ void FasSolver::descend(int l) {
     const std::uint8_t* fixed = a.fixed;
     for (int c = 0; c < s.ncomp; ++c) {
       double* f = grid_.data(s.rhs, c, cl);
-      const double* r = grid_.data(s.res, c, l);
+      const double* r = res(s, c, l);
       // rhs_H = L_H(u_H) + FW(r_h): the FAS right-hand side.
       restrict_full_weighting_minus(fine, coarse, r, minus_lu[static_cast<std::size_t>(c)], f, s.rows >= 0);
       if (s.rows >= 0) {
@@ -181,7 +193,11 @@ void FasSolver::descend(int l) {
       }
     }
     // With a zero fine right-hand side the coarse one is the relative truncation error tau_h^2h.
-    if (l == 0 && rhs_zero_[0]) tau_[si] = rms_interior(s, s.rhs, cl);
+    if (l == 0 && rhs_zero_[0]) {
+      std::vector<const double*> rhs;
+      for (int c = 0; c < s.ncomp; ++c) rhs.push_back(grid_.data(s.rhs, c, cl));
+      tau_[si] = rms_interior(s, rhs, cl);
+    }
   }
   rhs_zero_[static_cast<std::size_t>(cl)] = 0;
 }
@@ -195,7 +211,7 @@ void FasSolver::correct(int l, bool cubic) {
                                                               grid_.data(s.old, c, cl), grid_.data(s.u, c, l), fixed,
                                                               s.rows >= 0);
   }
-  fill_ghosts(l, unknowns);
+  fill_ghosts(l);
 }
 
 void FasSolver::cycle(int l, CycleType type) {
@@ -205,7 +221,6 @@ void FasSolver::cycle(int l, CycleType type) {
     return;
   }
   smooth(l, settings_.pre_sweeps);
-  residual(l);
   descend(l);
   if (type == CycleType::v || l + 1 == coarsest) {
     cycle(l + 1, type);
@@ -246,18 +261,18 @@ void FasSolver::prepare() {
           restrict_injection(grid_.level(l - 1), grid_.level(l), grid_.data(s.u, c, l - 1), grid_.data(s.u, c, l));
           std::memcpy(grid_.data(s.old, c, l), grid_.data(s.u, c, l), grid_.level(l).size * sizeof(double));
         }
-    fill_ghosts(l, unknowns);
+    fill_ghosts(l);
   }
   std::fill(rhs_zero_.begin(), rhs_zero_.end(), 1);
 }
 
-double FasSolver::rms_interior(const Slot& s, int field, int l) const {
+double FasSolver::rms_interior(const Slot& s, const std::vector<const double*>& field, int l) const {
   const Level& lv = grid_.level(l);
   const std::uint8_t* fixed = s.mask >= 0 ? grid_.mask(s.mask, l) : nullptr;
   const int end = lv.nx - 1;
   double sum = 0, count = 0;
   for (int c = 0; c < s.ncomp; ++c) {
-    const double* v = grid_.data(field, c, l);
+    const double* v = field[static_cast<std::size_t>(c)];
 #pragma omp parallel for reduction(+ : sum, count) schedule(static)
     for (int k = lv.k_begin(); k < lv.nz - 1; ++k)
       for (int j = 1; j < lv.ny - 1; ++j) {
@@ -288,16 +303,17 @@ double FasSolver::rms_interior(const Slot& s, int field, int l) const {
   return count > 0 ? std::sqrt(sum / count) : 0.0;
 }
 
-void FasSolver::fail_nonfinite(int cycle_number) const {
+void FasSolver::fail_nonfinite(int cycle_number) {
   const Level& lv = grid_.finest();
   // The first non-finite value, or else (a norm that overflowed) the largest one, with its place.
   const Slot* where_slot = nullptr;
   int where_field = -1, where_comp = 0, wi = 0, wj = 0, wk = 0;
   double largest = -1;
   for (const Slot& s : slots_)
-    for (int which : {s.u, s.res})
+    for (int which : {s.u, s.res}) {
+      if (which == s.res) residual_of(s, 0);  // the finest level's residuals share one array set
       for (int c = 0; c < s.ncomp; ++c) {
-        const double* v = grid_.data(which, c, 0);
+        const double* v = which == s.u ? grid_.data(s.u, c, 0) : res(s, c, 0);
         for (int k = 0; k < lv.nz; ++k)
           for (int j = 0; j < lv.ny; ++j)
             for (int i = 0; i < lv.nx; ++i) {
@@ -317,6 +333,7 @@ void FasSolver::fail_nonfinite(int cycle_number) const {
               }
             }
       }
+    }
   throw RunFailure(fmt::format(
       "multigrid: the residual norm overflows after {}: the largest value is {} = {:.3e} of equation '{}' "
       "(component {}) at point ({}, {}, {}) = ({:.6g}, {:.6g}, {:.6g})",
@@ -371,10 +388,14 @@ SolveReport FasSolver::solve_cycles() {
   rhs_zero_[0] = 1;
 
   auto measure = [&](int number) {
-    residual(0);
     CycleRecord rec;
     rec.cycle = number;
-    for (const Slot& s : slots_) rec.residual.push_back(rms_interior(s, s.res, 0));
+    for (const Slot& s : slots_) {
+      residual_of(s, 0);
+      std::vector<const double*> r;
+      for (int c = 0; c < s.ncomp; ++c) r.push_back(res(s, c, 0));
+      rec.residual.push_back(rms_interior(s, r, 0));
+    }
     rec.tau = tau_;
     rec.seconds = std::chrono::duration<double>(clock::now() - start).count();
     for (double r : rec.residual)

@@ -57,7 +57,8 @@ struct SolveReport {
 struct Slot {
   EllipticEquation* eq = nullptr;
   std::string name;
-  int u = -1, rhs = -1, res = -1, old = -1;
+  int u = -1, rhs = -1, old = -1;
+  int res = -1;  ///< coarse levels only (the finest level's: FasSolver::res) unless the grid has one level
   int ncomp = 1;
   std::vector<Parity> parity;
   OuterBoundary boundary;
@@ -87,16 +88,23 @@ class FasSolver {
   void prepare();
   void cycle(int l, CycleType type);
   void smooth(int l, int sweeps);
-  /// res = rhs - L(u) on level l (interior and boundary rows; 0 where held).
+  /// res = rhs - L(u) of one equation on level l (interior and boundary rows; 0 where held), its
+  /// ghosts filled.
+  void residual_of(const Slot& s, int l);
+  /// residual_of every equation on level l (not on the finest level of several, whose residuals
+  /// share one array set).
   void residual(int l);
-  /// From level l to l+1: u and old by injection, rhs = L(u) + FW(res). Returns nothing; when l = 0
-  /// the truncation-error norms are taken from the new rhs.
+  /// The residual array of component c of s on level l.
+  double* res(const Slot& s, int c, int l);
+  /// From level l to l+1: u and old by injection, then per equation its residual and rhs = L(u) +
+  /// FW(res). When l = 0 the truncation-error norms are taken from the new rhs.
   void descend(int l);
   /// u_l += P(u_{l+1} - old_{l+1}); cubic P for the FMG step, trilinear in cycles.
   void correct(int l, bool cubic);
-  void fill_ghosts(int l, int which);
-  double rms_interior(const Slot& s, int field, int l) const;
-  [[noreturn]] void fail_nonfinite(int cycle_number) const;
+  /// The ghosts of every unknown on level l (equatorial symmetry).
+  void fill_ghosts(int l);
+  double rms_interior(const Slot& s, const std::vector<const double*>& field, int l) const;
+  [[noreturn]] void fail_nonfinite(int cycle_number);
   RelaxArgs args(const Slot& s, int l) const;
 
   Grid& grid_;
@@ -112,6 +120,7 @@ class FasSolver {
   }
   std::vector<char> rhs_zero_;  // per level: the right-hand side is identically zero
   std::vector<double> tau_;     // per equation, from the last descent from the finest level
+  int fine_residual_ = -1;      // the finest level's residual, shared by the equations; -1: one level
   std::unique_ptr<CoarseSolver> coarse_;
   SolveReport report_;
   // Pointer tables handed to the equations: [slot][level][component].
