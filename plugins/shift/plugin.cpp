@@ -61,6 +61,15 @@ void declare(core::PluginBuilder& b) {
       .doc("the box of the local sweeps: the held points' bounding box widened by this many points per side")
       .default_value(8)
       .at_least(0);
+  b.integer("local_levels")
+      .doc("the finest levels that get local_sweeps box sweeps; the coarser ones, where the box covers much of the "
+           "level, get coarse_local_sweeps")
+      .default_value(2)
+      .at_least(0);
+  b.integer("coarse_local_sweeps")
+      .doc("box sweeps after every multigrid sweep of the shift on the levels below the finest local_levels")
+      .default_value(4)
+      .at_least(0);
   b.real("test_coupling_scale")
       .doc("TEST ONLY: multiplies the term (6/phi)[(d_j beta^i + d_i beta^j) dphi_j - (2/3) dphi_i div beta] "
            "(dimensionless), so that tests can show that the IRE (bhnsid validate) detects a one-coefficient error "
@@ -84,6 +93,8 @@ void declare(core::PluginBuilder& b) {
      settings.lattice = ctx.params().real("excision_lattice");
      settings.local_sweeps = static_cast<int>(ctx.params().integer("local_sweeps"));
      settings.local_width = static_cast<int>(ctx.params().integer("local_width"));
+     settings.local_levels = static_cast<int>(ctx.params().integer("local_levels"));
+     settings.coarse_local_sweeps = static_cast<int>(ctx.params().integer("coarse_local_sweeps"));
      state->equation = std::make_shared<ShiftEquation>(grid, fluid, puncture, settings);
      ctx.publish<EllipticEquation>("equation.shift", state->equation);
      ctx.log().info("minimal-distortion shift: {}, {}", fluid ? "with matter" : "vacuum",

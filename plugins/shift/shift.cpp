@@ -174,17 +174,18 @@ void ShiftEquation::relax(const RelaxArgs& args) const {
   const stencil::Components v{grid_.data(beta_, 0, l), grid_.data(beta_, 1, l), grid_.data(beta_, 2, l)};
   const Sources s = sources(l);
   const stencil::Mirror mirror = [this, l] { grid_.fill_ghosts(beta_, l); };
-  const bool local = args.fixed && settings_.local_sweeps > 0 && static_cast<std::size_t>(l) < held_box_.size();
+  const int box_sweeps = l < settings_.local_levels ? settings_.local_sweeps : settings_.coarse_local_sweeps;
+  const bool local = args.fixed && box_sweeps > 0 && static_cast<std::size_t>(l) < held_box_.size();
   with_kind(puncture_ != nullptr, fluid_ != nullptr, [&](auto hole, auto matter) {
     const ShiftLower<decltype(hole)::value, decltype(matter)::value> lower{s};
     stencil::vector_relax_any(grid_.level(l), v, args.rhs, args.fixed, args.omega, mirror, lower);
     if (local) {
-      // The same sweep on the box about the hole (a few thousand points), local_sweeps times.
+      // The same sweep on the box about the hole (a few thousand points), box_sweeps times.
       const Level& lv = grid_.level(l);
       const stencil::Box& box = held_box_[static_cast<std::size_t>(l)];
       const bool touches_ghost = lv.z_symmetry && box.k0 == lv.k_begin();
       if (touches_ghost) mirror();
-      for (int sweep = 0; sweep < settings_.local_sweeps; ++sweep) {
+      for (int sweep = 0; sweep < box_sweeps; ++sweep) {
         stencil::vector_relax_any(lv, v, args.rhs, args.fixed, args.omega, mirror, lower, box);
         if (touches_ghost) mirror();
       }

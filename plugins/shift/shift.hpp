@@ -23,6 +23,8 @@ struct Settings {
   double lattice = 0;       ///< > 0: faces of the excision cube on the planes of this lattice (snap_to_lattice)
   int local_sweeps = 16;    ///< extra red-black sweeps on the box about the hole after every sweep
   int local_width = 8;      ///< the box: the held points' bounding box widened by this many points
+  int local_levels = 2;     ///< the finest levels with local_sweeps; the coarser get coarse_local_sweeps
+  int coarse_local_sweeps = 4;
 };
 
 /// What one refresh of the puncture terms did, for the log and the scalars.
