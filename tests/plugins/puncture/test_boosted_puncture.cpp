@@ -83,9 +83,10 @@ TEST_CASE("plugins.puncture.boosted_puncture_matches_the_axisymmetric_reference"
     CHECK(b.scalar("angular_momentum_z") == Approx(0.1 * t.p).epsilon(1e-4));
     CHECK(b.scalar("wvec_max") == 0.0);  // no matter: W has no source
     // The shift's extra sweeps around the hole (shift.local_sweeps) brought this solve from 10 V(2,1)
-    // cycles to 5, and with 16 sweeps on a wider box and V(2,2) to FMG + 2 (the last one at r/tau
-    // just under 1e-3, so round-off may tip it to 3): a guard against losing that again.
-    CHECK(b.scalar("multigrid_cycles") <= 3);
+    // cycles to 5, with 16 sweeps on a wider box and V(2,2) to FMG + 2 (the last one at r/tau just
+    // under 1e-3), and with 4 of them on the levels below the finest two to FMG + 2 with margin
+    // (r/tau 5.8e-4, 6.0e-4, 6.3e-4 for P = 0.1, 0.2, 0.3): a guard against losing that again.
+    CHECK(b.scalar("multigrid_cycles") <= 2);
   }
 }
 
