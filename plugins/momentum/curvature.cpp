@@ -125,21 +125,11 @@ PointChange curvature_row(const CurvatureRow& r, int nx, Stride st) {
 }
 
 void check_off_the_points(const Grid& grid, const std::array<double, 3>& x_bh) {
-  for (int l = 0; l < grid.num_levels(); ++l) {
-    const Level& lv = grid.level(l);
-    const int extent[3] = {lv.nx, lv.ny, lv.nz};
-    double d2 = 0;
-    for (int a = 0; a < 3; ++a) {
-      const double t = std::round((x_bh[static_cast<std::size_t>(a)] - lv.origin[static_cast<std::size_t>(a)]) / lv.dx);
-      const double idx = std::fmin(std::fmax(t, 0.0), extent[a] - 1.0);
-      const double d = x_bh[static_cast<std::size_t>(a)] - (lv.origin[static_cast<std::size_t>(a)] + idx * lv.dx);
-      d2 += d * d;
-    }
-    if (!(std::sqrt(d2) > 1e-6 * lv.dx))
+  for (int l = 0; l < grid.num_levels(); ++l)
+    if (!(grid.level(l).distance_to_nearest_point(x_bh) > 1e-6 * grid.level(l).dx))
       throw core::RunFailure(fmt::format("momentum: the puncture ({}, {}, {}) lies on a grid point of level {}, where "
                                          "the Bowen-York tensor is infinite",
                                          x_bh[0], x_bh[1], x_bh[2], l));
-  }
 }
 
 }  // namespace

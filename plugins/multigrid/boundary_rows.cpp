@@ -133,10 +133,6 @@ void row_sums(const RobinRows& rows, const std::array<const double*, N>& u, cons
   }
 }
 
-}  // namespace
-
-namespace {
-
 /// Splits items (each with .u and .u_inf) into batches of at most max_batch and calls
 /// fn(batch, first, u, u_inf) for each: batch an std::integral_constant with the batch's size N,
 /// first its first item, u and u_inf the batch's arrays and asymptotic values for row_sums.

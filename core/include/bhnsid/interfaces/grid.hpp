@@ -4,7 +4,9 @@
 // plain contiguous arrays, ghost filling, excision masks and global reductions. Halo exchange and
 // every reduction live here so that a domain-decomposed (MPI) grid can replace the serial one
 // without touching an equation plugin.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -50,6 +52,18 @@ struct Level {
   }
   /// Half-width of the cube, r_c = n dx / 2.
   double half_width() const { return 0.5 * n * dx; }
+  /// Distance from p to the nearest stored point (the puncture's 1/r needs it off the points).
+  double distance_to_nearest_point(const std::array<double, 3>& p) const {
+    const int extent[3] = {nx, ny, nz};
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      const std::size_t s = static_cast<std::size_t>(a);
+      const double t = std::clamp(std::round((p[s] - origin[s]) / dx), 0.0, extent[a] - 1.0);
+      const double d = p[s] - (origin[s] + t * dx);
+      d2 += d * d;
+    }
+    return std::sqrt(d2);
+  }
 };
 
 struct FieldInfo {
