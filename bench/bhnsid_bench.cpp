@@ -2,7 +2,7 @@
 //
 //   bhnsid-bench poisson --n N [--threads T] [--reps R]
 //   bhnsid-bench puncture --n N [--threads T] [--reps R]
-//   bhnsid-bench sweep [--n N] [--threads T]
+//   bhnsid-bench sweep [--n N] [--threads T] [--lower none|momentum|shift|shift-no-hole]
 //
 // solves the hypre peer's problem (../shared/peers/src/problem.hpp: -Laplace u = f on the unit
 // cube, N^3 interior unknowns, h = 1/(N+1), homogeneous Dirichlet, u = g(x)g(y)g(z) with
@@ -236,11 +236,14 @@ int main(int argc, char** argv) {
                 "both solves stop when |r| <= this * |tau| for every equation (the solver's default 1e-3; "
                 "1 is the Poisson benchmark's criterion)");
   int sweep_n = 256;
-  auto* w = app.add_subcommand("sweep", "one vector sweep of core (principal part only), ns per point at n = 32 .. N");
+  auto* w = app.add_subcommand("sweep", "one vector sweep of core with a lower-order term, ns per point at n = 32 .. N");
   w->add_option("--n", sweep_n, "largest n (intervals), a power of 2 >= 32");
   w->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  std::string sweep_lower = "none";
+  w->add_option("--lower", sweep_lower, "lower-order term of the swept operator")
+      ->check(CLI::IsMember({"none", "momentum", "shift", "shift-no-hole"}));
   CLI11_PARSE(app, argc, argv);
-  if (w->parsed()) return bhnsid::bench::vector_sweep(sweep_n, threads);
+  if (w->parsed()) return bhnsid::bench::vector_sweep(sweep_n, threads, sweep_lower);
   if (q->parsed()) {
     try {
       return puncture(pn, threads, reps, puncture_tau);
