@@ -39,9 +39,10 @@ struct ExcisionReport {
 
 class ShiftEquation final : public EllipticEquation {
  public:
-  /// Registers beta (and, with a puncture, the excision mask); reads chi, eta and ahat, which other plugins register: core::InputError naming the
-  /// missing field and its plugin otherwise. With a puncture: InputError for Mhat_BH <= 0, |v| >= 1
-  /// or a cube reaching the outer boundary. fluid and puncture may be null (vacuum, no hole).
+  /// Registers beta (and, with a puncture, the excision mask); reads chi, eta and ahat, which other
+  /// plugins register: core::InputError naming the missing field and its plugin otherwise. With a
+  /// puncture: InputError for Mhat_BH <= 0, |v| >= 1 or a cube reaching the outer boundary. fluid
+  /// and puncture may be null (vacuum, no hole).
   ShiftEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, Settings settings);
 
   std::string name() const override { return "shift"; }
@@ -52,9 +53,10 @@ class ShiftEquation final : public EllipticEquation {
   void residual(const RelaxArgs& args, double* const* out) const override;
   void relax(const RelaxArgs& args) const override;
 
-  /// Before every solve: when the puncture changed, rebuild the excision mask on every level; then set beta = beta_0 at every excised point of
-  /// every level. core::RunFailure for a puncture that became invalid (the cube reaching the
-  /// boundary, Mhat <= 0, |v| >= 1). Without a puncture it does nothing.
+  /// Before every solve: when the puncture changed, rebuild the excision mask on every level; then
+  /// set beta = beta_0 at every excised point of every level. core::RunFailure for a puncture that
+  /// became invalid (the cube reaching the boundary, Mhat <= 0, |v| >= 1). Without a puncture it
+  /// does nothing.
   ExcisionReport update_puncture();
 
  private:
