@@ -18,7 +18,7 @@ namespace bhnsid::bench {
 namespace {
 
 struct NoLowerTerm {
-  stencil::Triple at(std::ptrdiff_t, int, const stencil::Rows&, const stencil::Rows&, const stencil::Rows&) const {
+  stencil::Triple at(std::ptrdiff_t, std::ptrdiff_t, const stencil::Rows&, const stencil::Rows&, const stencil::Rows&) const {
     return {0.0, 0.0, 0.0};
   }
 };

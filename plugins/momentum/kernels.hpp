@@ -55,7 +55,7 @@ template <bool Matter, bool Shift>
 struct MomentumLower {
   Sources s;
 
-  [[gnu::always_inline]] stencil::Triple at(std::ptrdiff_t idx, int i, const stencil::Rows& x, const stencil::Rows& y,
+  [[gnu::always_inline]] stencil::Triple at(std::ptrdiff_t idx, std::ptrdiff_t i, const stencil::Rows& x, const stencil::Rows& y,
                                             const stencil::Rows& z) const {
     const double h = s.inv_2h;
     const stencil::Triple gx = stencil::gradient(x, i, h), gy = stencil::gradient(y, i, h), gz = stencil::gradient(z, i, h);

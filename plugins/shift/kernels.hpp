@@ -58,7 +58,7 @@ struct ShiftLower {
     return bound;
   }
 
-  [[gnu::always_inline]] Triple at(std::ptrdiff_t idx, int i, const Rows& x, const Rows& y, const Rows& z) const {
+  [[gnu::always_inline]] Triple at(std::ptrdiff_t idx, std::ptrdiff_t i, const Rows& x, const Rows& y, const Rows& z) const {
     const double h = s.inv_2h;
     // d_j beta^i: bx = (d_x beta^x, d_y beta^x, d_z beta^x), and so on.
     const Triple bx = stencil::gradient(x, i, h), by = stencil::gradient(y, i, h), bz = stencil::gradient(z, i, h);

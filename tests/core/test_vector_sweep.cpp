@@ -36,7 +36,7 @@ struct Lower {
   const double* b;
   double inv_2h;
   std::ptrdiff_t sy, sz;
-  stencil::Triple at(std::ptrdiff_t idx, int i, const stencil::Rows& x, const stencil::Rows& y,
+  stencil::Triple at(std::ptrdiff_t idx, std::ptrdiff_t i, const stencil::Rows& x, const stencil::Rows& y,
                      const stencil::Rows& z) const {
     const stencil::Triple gy = stencil::gradient(y, i, inv_2h);
     return {a[idx] * inv_2h * (x.c[i + 1] - x.c[i - 1]) + b[idx] * gy.x,
