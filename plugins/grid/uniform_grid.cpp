@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -144,12 +145,19 @@ double* UniformGrid::data(int id, int component, int level) {
 
 void UniformGrid::fill_ghosts(double* values, Parity parity, int level_index) const {
   const Level& lv = level(level_index);
+  fill_ghost_columns(values, parity, level_index, 0, lv.nx - 1, 0, lv.ny - 1);
+}
+
+void UniformGrid::fill_ghost_columns(double* values, Parity parity, int level_index, int i0, int i1, int j0,
+                                     int j1) const {
+  const Level& lv = level(level_index);
   if (!lv.z_symmetry) return;
   const double sign = parity.z;
-  for (int j = 0; j < lv.ny; ++j) {
+  i0 = std::max(i0, 0), i1 = std::min(i1, lv.nx - 1), j0 = std::max(j0, 0), j1 = std::min(j1, lv.ny - 1);
+  for (int j = j0; j <= j1; ++j) {
     double* ghost = values + lv.at(0, j, -1);
     const double* image = values + lv.at(0, j, 1);
-    for (int i = 0; i < lv.nx; ++i) ghost[i] = sign * image[i];
+    for (int i = i0; i <= i1; ++i) ghost[i] = sign * image[i];
   }
 }
 

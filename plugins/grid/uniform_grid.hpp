@@ -42,6 +42,8 @@ class UniformGrid final : public Grid {
 
   using Grid::fill_ghosts;  // keep fill_ghosts(field, level) visible beside the override
   void fill_ghosts(double* values, Parity parity, int level) const override;
+  using Grid::fill_ghost_columns;
+  void fill_ghost_columns(double* values, Parity parity, int level, int i0, int i1, int j0, int j1) const override;
 
   int add_mask(const std::string& name, const ExcisionRegion& region) override;
   int mask_id(const std::string& name) const override;

@@ -181,13 +181,18 @@ void ShiftEquation::relax(const RelaxArgs& args) const {
     stencil::vector_relax_any(grid_.level(l), v, args.rhs, args.fixed, args.omega, mirror, lower);
     if (local) {
       // The same sweep on the box about the hole (a few thousand points), box_sweeps times.
+      // It reads the mirror plane only below the box and one column around it; the solver
+      // refreshes the whole plane after relax.
       const Level& lv = grid_.level(l);
       const stencil::Box& box = held_box_[static_cast<std::size_t>(l)];
       const bool touches_ghost = lv.z_symmetry && box.k0 == lv.k_begin();
-      if (touches_ghost) mirror();
+      const stencil::Mirror box_mirror = [this, l, &box] {
+        grid_.fill_ghost_columns(beta_, l, box.i0 - 1, box.i1 + 1, box.j0 - 1, box.j1 + 1);
+      };
+      if (touches_ghost) box_mirror();
       for (int sweep = 0; sweep < box_sweeps; ++sweep) {
-        stencil::vector_relax_any(lv, v, args.rhs, args.fixed, args.omega, mirror, lower, box);
-        if (touches_ghost) mirror();
+        stencil::vector_relax_any(lv, v, args.rhs, args.fixed, args.omega, box_mirror, lower, box);
+        if (touches_ghost) box_mirror();
       }
     }
   });

@@ -228,6 +228,37 @@ TEST_CASE("plugins.grid.fill_ghosts_mirrors_the_symmetry_plane", "[plugins][grid
   }
 }
 
+TEST_CASE("plugins.grid.fill_ghost_columns_fills_only_its_columns", "[plugins][grid]") {
+  // The shift's box sweeps refresh the mirror plane below their box only: inside the columns
+  // (clamped to the level) the ghost holds parity times the image of k = 1, outside it keeps
+  // what it held, and no stored point changes. Index-coded values as above.
+  auto grid = make_grid(8, 0.5, Symmetry::equatorial);
+  Grid& g = *grid;
+  const int f = g.add_field("f", {TensorKind::vector_z});
+  const Level& lv = g.level(0);
+  double* v = g.data(f, 0, 0);
+  for (std::size_t p = 0; p < lv.size; ++p) v[p] = -999;
+  for (int k = 0; k < lv.nz; ++k)
+    for (int j = 0; j < lv.ny; ++j)
+      for (int i = 0; i < lv.nx; ++i) v[lv.at(i, j, k)] = 1 + i + 100 * j + 1e4 * k;
+  const std::vector<double> before(v, v + lv.size);
+  const int i0 = -1, i1 = 3, j0 = 2, j1 = 5;  // i0 off the level: clamped to 0
+  g.fill_ghost_columns(f, 0, i0, i1, j0, j1);
+  int wrong_inside = 0, wrong_outside = 0, wrong_stored = 0;
+  for (int j = 0; j < lv.ny; ++j)
+    for (int i = 0; i < lv.nx; ++i) {
+      const std::ptrdiff_t ghost = lv.at(i, j, -1);
+      if (i <= i1 && j >= j0 && j <= j1)
+        wrong_inside += v[ghost] != -v[lv.at(i, j, 1)];
+      else
+        wrong_outside += v[ghost] != before[static_cast<std::size_t>(ghost)];
+      for (int k = 0; k < lv.nz; ++k) wrong_stored += v[lv.at(i, j, k)] != before[static_cast<std::size_t>(lv.at(i, j, k))];
+    }
+  CHECK(wrong_inside == 0);
+  CHECK(wrong_outside == 0);
+  CHECK(wrong_stored == 0);
+}
+
 namespace {
 
 // Reference membership in integer units of the finest spacing: point (i, j, k) of level l sits at

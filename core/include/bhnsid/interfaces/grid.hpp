@@ -113,6 +113,19 @@ class Grid : public core::Service {
     for (int c = 0; c < static_cast<int>(info.components.size()); ++c)
       fill_ghosts(data(field, c, level), info.parity[c], level);
   }
+  /// fill_ghosts for the columns i0 <= i <= i1, j0 <= j <= j1 only (clamped to the level): what a
+  /// sweep confined to a box about the hole reads. The shift refreshes the mirror plane twice per
+  /// sweep of its box, 32 times per relaxation: the whole plane each time cost about 1 % of a run.
+  /// The default fills every column.
+  virtual void fill_ghost_columns(double* values, Parity parity, int level, int i0, int i1, int j0, int j1) const {
+    (void)i0, (void)i1, (void)j0, (void)j1;
+    fill_ghosts(values, parity, level);
+  }
+  void fill_ghost_columns(int field, int level, int i0, int i1, int j0, int j1) {
+    const FieldInfo& info = field_info(field);
+    for (int c = 0; c < static_cast<int>(info.components.size()); ++c)
+      fill_ghost_columns(data(field, c, level), info.parity[c], level, i0, i1, j0, j1);
+  }
 
   /// Registers an excision mask (1 inside the region, 0 outside) built on every level; the same
   /// name again with the same region returns the existing id.
