@@ -183,11 +183,17 @@ int UniformGrid::add_mask(const std::string& name, const ExcisionRegion& region)
         return std::fmax(std::fabs(dx), std::fmax(std::fabs(dy), std::fabs(dz))) <= region.half_size + tol;
       return std::sqrt(dx * dx + dy * dy + dz * dz) <= region.half_size + tol;
     };
-    for (int k = 0; k < lv.nz; ++k)
-      for (int j = 0; j < lv.ny; ++j)
-        for (int i = 0; i < lv.nx; ++i) {
+    // The bytes are zero: only the region's bounding box (and, under equatorial symmetry, its
+    // mirror image's, for the region stands for both) is visited.
+    const double reach = region.half_size + tol;
+    const auto& c = region.centre;
+    const auto ri = lv.indices_near(0, c[0] - reach, c[0] + reach), rj = lv.indices_near(1, c[1] - reach, c[1] + reach);
+    const double zlo = lv.z_symmetry ? std::fmin(c[2], -c[2]) : c[2], zhi = lv.z_symmetry ? std::fmax(c[2], -c[2]) : c[2];
+    const auto rk = lv.indices_near(2, zlo - reach, zhi + reach);
+    for (int k = rk[0]; k <= rk[1]; ++k)
+      for (int j = rj[0]; j <= rj[1]; ++j)
+        for (int i = ri[0]; i <= ri[1]; ++i) {
           const double x = lv.x(i), y = lv.y(j), z = lv.z(k);
-          // Under equatorial symmetry the region stands for itself and its mirror image.
           const bool in = inside(x, y, z) || (lv.z_symmetry && inside(x, y, -z));
           bytes[static_cast<std::size_t>(lv.at(i, j, k))] = in ? 1 : 0;
         }

@@ -8,6 +8,7 @@
 
 #include "bhnsid/core/errors.hpp"
 #include "hierarchy.hpp"
+#include "test_level.hpp"
 #include "process.hpp"
 
 using namespace bhnsid;
@@ -188,4 +189,34 @@ TEST_CASE("plugins.grid.check_refuses_a_bad_hierarchy_before_any_run", "[plugins
   CHECK_FALSE(std::filesystem::exists(out));
   const ProcessResult good = run_bhnsid({"check", par.string(), "--set", "grid.n=64"});
   CHECK(good.exit_code == 0);
+}
+
+TEST_CASE("plugins.grid.level_indices_near_covers_an_interval", "[plugins][grid]") {
+  // Level::indices_near gives the stored indices along an axis that a coordinate interval can
+  // hold (the excision masks loop over only these): every index whose coordinate lies in [lo, hi]
+  // is in [first, last], an interval off the level gives an empty range, and the range is clamped.
+  const Level lv = test::make_level(8, 0.5, true);  // x, y in [-2, 2], z in [0, 2]
+  for (int axis = 0; axis < 3; ++axis) {
+    const int extent = axis == 0 ? lv.nx : axis == 1 ? lv.ny : lv.nz;
+    for (double lo = -3.1; lo < 3; lo += 0.13)
+      for (double width : {0.0, 0.2, 0.5, 1.7}) {
+        const double hi = lo + width;
+        const auto r = lv.indices_near(axis, lo, hi);
+        CHECK(r[0] >= 0);
+        CHECK(r[1] <= extent - 1);
+        int missed = 0;
+        for (int i = 0; i < extent; ++i) {
+          const double x = lv.origin[static_cast<std::size_t>(axis)] + lv.dx * i;
+          if (x >= lo && x <= hi) missed += i < r[0] || i > r[1];
+        }
+        INFO("axis " << axis << ", [" << lo << ", " << hi << "]");
+        CHECK(missed == 0);
+      }
+    const auto above = lv.indices_near(axis, 10, 11), below = lv.indices_near(axis, -11, -10);
+    CHECK(above[0] > above[1]);
+    CHECK(below[0] > below[1]);
+    const auto all = lv.indices_near(axis, -100, 100);
+    CHECK(all[0] == 0);
+    CHECK(all[1] == extent - 1);
+  }
 }

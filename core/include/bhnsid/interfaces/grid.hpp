@@ -52,6 +52,16 @@ struct Level {
   }
   /// Half-width of the cube, r_c = n dx / 2.
   double half_width() const { return 0.5 * n * dx; }
+  /// The stored indices along `axis` (0, 1, 2) whose coordinate may lie in [lo, hi], one index of
+  /// slack each way, clamped to the level: [first, last], empty when first > last. Loops over a
+  /// small region (an excision cube) visit these instead of the whole level and test exactly.
+  std::array<int, 2> indices_near(int axis, double lo, double hi) const {
+    const std::size_t a = static_cast<std::size_t>(axis);
+    const int extent = axis == 0 ? nx : axis == 1 ? ny : nz;
+    const double first = std::floor((lo - origin[a]) / dx) - 1, last = std::ceil((hi - origin[a]) / dx) + 1;
+    return {static_cast<int>(std::clamp(first, 0.0, static_cast<double>(extent))),
+            static_cast<int>(std::clamp(last, -1.0, extent - 1.0))};
+  }
   /// Distance from p to the nearest stored point (the puncture's 1/r needs it off the points).
   double distance_to_nearest_point(const std::array<double, 3>& p) const {
     const int extent[3] = {nx, ny, nz};
