@@ -277,7 +277,8 @@ double FasSolver::rms_interior(const Slot& s, const std::vector<const double*>& 
     for (int k = lv.k_begin(); k < lv.nz - 1; ++k)
       for (int j = 1; j < lv.ny - 1; ++j) {
         const double* row = v + lv.at(0, j, k);
-        if (!fixed) {
+        // Held points lie in a few rows only (an excision cube): the others take the plain loop.
+        if (!fixed || !stencil::row_has_fixed(fixed + lv.at(0, j, k), end)) {
           double line = 0;
 #pragma omp simd reduction(+ : line)
           for (int i = 1; i < end; ++i) line += row[i] * row[i];
