@@ -166,6 +166,23 @@ void robin_residual(const RobinRows& rows, const std::vector<RobinResidual>& fie
   });
 }
 
+void robin_residual_rows(const RobinRows& rows, const std::vector<RobinResidual>& fields, double* out) {
+  const std::size_t n = fields.size();
+  in_batches(fields, [&](auto batch, const RobinResidual* f, const auto& u, const auto& u_inf) {
+    constexpr int N = decltype(batch)::value;
+    const std::size_t first = static_cast<std::size_t>(f - fields.data());
+#pragma omp parallel
+    row_sums<N>(rows, u, u_inf, [&](std::size_t r, const std::array<double, N>& sum) {
+      const std::ptrdiff_t p = rows.point[r];
+      for (int t = 0; t < N; ++t) {
+        const RobinResidual& x = f[t];
+        const double b = (x.u[p] - x.u_inf) - sum[t];
+        out[r * n + first + static_cast<std::size_t>(t)] = x.fixed && x.fixed[p] ? 0.0 : (x.rhs ? x.rhs[p] : 0.0) - b;
+      }
+    });
+  });
+}
+
 void robin_relax(const RobinRows& rows, const std::vector<RobinTarget>& targets) {
   in_batches(targets, [&](auto batch, const RobinTarget* x, const auto& u, const auto& u_inf) {
     constexpr int N = decltype(batch)::value;

@@ -75,6 +75,11 @@ inline void robin_residual(const RobinRows& rows, double u_inf, const double* u,
   robin_residual(rows, {RobinResidual{u, u_inf, rhs, fixed, res}});
 }
 
+/// The same residuals row by row into out[r * fields.size() + t] (field t's res unused): the solver
+/// forms those of all equations that share the rows in one pass and hands them out one equation at
+/// a time.
+void robin_residual_rows(const RobinRows& rows, const std::vector<RobinResidual>& fields, double* out);
+
 /// Every face point of every target solved for its own row from the values before the call
 /// (Jacobi: the rows are independent of each other but for the few that lean on another face
 /// point, a contraction with weights < 1/8, and Jacobi lets the threads share them). All targets

@@ -61,6 +61,9 @@ FasSolver::FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations
         for (int l = 0; l < grid.num_levels(); ++l) row_sets_.back().push_back(robin_stencils(grid.level(l), s.boundary.centre, false));
       }
     }
+    if (s.rows >= 0)
+      for (const Slot& other : slots_)
+        if (other.rows == s.rows) s.face_column += other.ncomp;
     if (const std::string mask = eq->excision_mask(); !mask.empty()) s.mask = grid.mask_id(mask);
     for (const std::string& name : eq->coefficients()) s.coefficients.push_back(grid.field_id(name));
     slots_.push_back(std::move(s));
@@ -133,22 +136,49 @@ void FasSolver::smooth(int l, int sweeps) {
   }
 }
 
-void FasSolver::residual_of(const Slot& s, int l) {
+std::vector<RobinResidual> FasSolver::boundary_targets(const Slot& s, int l, const std::vector<double*>& out) {
+  const RelaxArgs a = args(s, l);
+  std::vector<RobinResidual> targets;
+  for (int c = 0; c < s.ncomp; ++c)
+    targets.push_back(RobinResidual{grid_.data(s.u, c, l), s.boundary.u_inf[static_cast<std::size_t>(c)],
+                                    a.rhs ? a.rhs[c] : nullptr, a.fixed,
+                                    out.empty() ? nullptr : out[static_cast<std::size_t>(c)]});
+  return targets;
+}
+
+void FasSolver::boundary_residuals(int l) {
+  face_residuals_.resize(row_sets_.size());
+  for (std::size_t set = 0; set < row_sets_.size(); ++set) {
+    std::vector<RobinResidual> fields;
+    for (const Slot& s : slots_)
+      if (s.rows == static_cast<int>(set))
+        for (const RobinResidual& t : boundary_targets(s, l, {})) fields.push_back(t);
+    const RobinRows& r = row_sets_[set][static_cast<std::size_t>(l)];
+    face_residuals_[set].resize(r.size() * fields.size());
+    robin_residual_rows(r, fields, face_residuals_[set].data());
+  }
+}
+
+void FasSolver::residual_of(const Slot& s, int l, bool rows_done) {
   const Level& lv = grid_.level(l);
   std::vector<double*> out;
   for (int c = 0; c < s.ncomp; ++c) out.push_back(res(s, c, l));
-  const RelaxArgs a = args(s, l);
-  s.eq->residual(a, out.data());
-  std::vector<RobinResidual> boundary;
-  for (int c = 0; c < s.ncomp; ++c) {
-    double* r = out[static_cast<std::size_t>(c)];
-    if (s.rows < 0)
-      zero_faces(lv, r);
-    else
-      boundary.push_back(
-          RobinResidual{grid_.data(s.u, c, l), s.boundary.u_inf[static_cast<std::size_t>(c)], a.rhs ? a.rhs[c] : nullptr, a.fixed, r});
+  s.eq->residual(args(s, l), out.data());
+  if (s.rows < 0) {
+    for (double* r : out) zero_faces(lv, r);
+  } else if (!rows_done) {
+    robin_residual(rows(s, l), boundary_targets(s, l, out));
+  } else {
+    // From boundary_residuals(l): this equation's columns of its row set.
+    const RobinRows& r = rows(s, l);
+    const std::vector<double>& face = face_residuals_[static_cast<std::size_t>(s.rows)];
+    const std::size_t width = face.size() / std::max<std::size_t>(r.size(), 1);
+    for (int c = 0; c < s.ncomp; ++c) {
+      double* o = out[static_cast<std::size_t>(c)];
+      const std::size_t column = static_cast<std::size_t>(s.face_column + c);
+      for (std::size_t row = 0; row < r.size(); ++row) o[r.point[row]] = face[row * width + column];
+    }
   }
-  if (!boundary.empty()) robin_residual(rows(s, l), boundary);
   if (lv.z_symmetry)
     for (int c = 0; c < s.ncomp; ++c) grid_.fill_ghosts(out[static_cast<std::size_t>(c)], s.parity[static_cast<std::size_t>(c)], l);
 }
@@ -167,9 +197,10 @@ void FasSolver::descend(int l) {
       std::memcpy(grid_.data(s.old, c, cl), grid_.data(s.u, c, cl), coarse.size * sizeof(double));
     }
   fill_ghosts(cl);
+  boundary_residuals(l);
   for (std::size_t si = 0; si < slots_.size(); ++si) {
     const Slot& s = slots_[si];
-    residual_of(s, l);
+    residual_of(s, l, true);
     // -L(u_H) into the coarse residual array, which serves as scratch here.
     std::vector<double*> minus_lu;
     for (int c = 0; c < s.ncomp; ++c) minus_lu.push_back(grid_.data(s.res, c, cl));
@@ -177,15 +208,22 @@ void FasSolver::descend(int l) {
     a.rhs = nullptr;
     s.eq->residual(a, minus_lu.data());
     const std::uint8_t* fixed = a.fixed;
+    std::vector<RobinResidual> boundary;
     for (int c = 0; c < s.ncomp; ++c) {
       double* f = grid_.data(s.rhs, c, cl);
-      const double* r = res(s, c, l);
       // rhs_H = L_H(u_H) + FW(r_h): the FAS right-hand side.
-      restrict_full_weighting_minus(fine, coarse, r, minus_lu[static_cast<std::size_t>(c)], f, s.rows >= 0);
-      if (s.rows >= 0) {
-        // Boundary rows: rhs = B(u_H) + injected fine residual; robin_residual with no rhs gives -B.
-        robin_residual(rows(s, cl), {RobinResidual{grid_.data(s.u, c, cl), s.boundary.u_inf[static_cast<std::size_t>(c)],
-                                                   nullptr, fixed, f}});
+      restrict_full_weighting_minus(fine, coarse, res(s, c, l), minus_lu[static_cast<std::size_t>(c)], f, s.rows >= 0);
+      if (s.rows >= 0)
+        boundary.push_back(
+            RobinResidual{grid_.data(s.u, c, cl), s.boundary.u_inf[static_cast<std::size_t>(c)], nullptr, fixed, f});
+    }
+    if (!boundary.empty()) {
+      // Boundary rows: rhs = B(u_H) + injected fine residual; robin_residual with no rhs gives -B
+      // (all components in one pass over the rows).
+      robin_residual(rows(s, cl), boundary);
+      for (int c = 0; c < s.ncomp; ++c) {
+        double* f = grid_.data(s.rhs, c, cl);
+        const double* r = res(s, c, l);
         for_face_points(coarse, [&](int i, int j, int k) {
           const std::ptrdiff_t p = coarse.at(i, j, k);
           f[p] = r[fine.at(2 * i, 2 * j, 2 * k)] - f[p];
@@ -391,8 +429,9 @@ SolveReport FasSolver::solve_cycles() {
   auto measure = [&](int number) {
     CycleRecord rec;
     rec.cycle = number;
+    boundary_residuals(0);
     for (const Slot& s : slots_) {
-      residual_of(s, 0);
+      residual_of(s, 0, true);
       std::vector<const double*> r;
       for (int c = 0; c < s.ncomp; ++c) r.push_back(res(s, c, 0));
       rec.residual.push_back(rms_interior(s, r, 0));

@@ -63,6 +63,7 @@ struct Slot {
   std::vector<Parity> parity;
   OuterBoundary boundary;
   int rows = -1;                                // index into FasSolver::row_sets_; -1 for Dirichlet
+  int face_column = 0;                          // its first component's column in boundary_residuals' output
   int mask = -1;
   std::vector<int> coefficients;
 };
@@ -90,7 +91,12 @@ class FasSolver {
   void smooth(int l, int sweeps);
   /// res = rhs - L(u) of one equation on level l (interior and boundary rows; 0 where held), its
   /// ghosts filled.
-  void residual_of(const Slot& s, int l);
+  void residual_of(const Slot& s, int l, bool rows_done = false);
+  /// The boundary rows' residuals of every equation on level l, one pass per row set (the
+  /// equations about one centre together), for residual_of(s, l, true) to hand out: u must not
+  /// change in between.
+  void boundary_residuals(int l);
+  std::vector<RobinResidual> boundary_targets(const Slot& s, int l, const std::vector<double*>& out);
   /// residual_of every equation on level l (not on the finest level of several, whose residuals
   /// share one array set).
   void residual(int l);
@@ -115,6 +121,8 @@ class FasSolver {
   // the smoother relaxes all their components in one pass over the rows.
   std::vector<std::vector<RobinRows>> row_sets_;
   std::vector<std::array<double, 3>> row_centres_;
+  // Per row set, boundary_residuals' output: [row][column], the set's equations' components side by side.
+  std::vector<std::vector<double>> face_residuals_;
   const RobinRows& rows(const Slot& s, int level) const {
     return row_sets_[static_cast<std::size_t>(s.rows)][static_cast<std::size_t>(level)];
   }
