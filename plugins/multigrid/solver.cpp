@@ -136,7 +136,7 @@ void FasSolver::smooth(int l, int sweeps) {
   }
 }
 
-std::vector<RobinResidual> FasSolver::boundary_targets(const Slot& s, int l, const std::vector<double*>& out) {
+std::vector<RobinResidual> FasSolver::boundary_targets(const Slot& s, int l, const std::vector<double*>& out) const {
   const RelaxArgs a = args(s, l);
   std::vector<RobinResidual> targets;
   for (int c = 0; c < s.ncomp; ++c)

@@ -90,13 +90,14 @@ class FasSolver {
   void cycle(int l, CycleType type);
   void smooth(int l, int sweeps);
   /// res = rhs - L(u) of one equation on level l (interior and boundary rows; 0 where held), its
-  /// ghosts filled.
+  /// ghosts filled. rows_done: the boundary rows' part comes from the last boundary_residuals(l).
   void residual_of(const Slot& s, int l, bool rows_done = false);
   /// The boundary rows' residuals of every equation on level l, one pass per row set (the
   /// equations about one centre together), for residual_of(s, l, true) to hand out: u must not
   /// change in between.
   void boundary_residuals(int l);
-  std::vector<RobinResidual> boundary_targets(const Slot& s, int l, const std::vector<double*>& out);
+  /// The boundary rows' residual targets of s's components on level l (res from out, or none).
+  std::vector<RobinResidual> boundary_targets(const Slot& s, int l, const std::vector<double*>& out) const;
   /// residual_of every equation on level l (not on the finest level of several, whose residuals
   /// share one array set).
   void residual(int l);
