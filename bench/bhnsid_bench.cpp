@@ -3,6 +3,7 @@
 //   bhnsid-bench poisson --n N [--threads T] [--reps R]
 //   bhnsid-bench puncture --n N [--threads T] [--reps R]
 //   bhnsid-bench sweep [--n N] [--threads T] [--lower none|momentum|shift|shift-no-hole]
+//   bhnsid-bench robin [--n N] [--threads T]
 //
 // solves the hypre peer's problem (../shared/peers/src/problem.hpp: -Laplace u = f on the unit
 // cube, N^3 interior unknowns, h = 1/(N+1), homogeneous Dirichlet, u = g(x)g(y)g(z) with
@@ -29,6 +30,7 @@
 #include "bhnsid/core/parfile.hpp"
 #include "bhnsid/core/run.hpp"
 #include "bhnsid/core/yaml_tree.hpp"
+#include "robin.hpp"
 #include "sweep.hpp"
 
 namespace fs = std::filesystem;
@@ -242,8 +244,13 @@ int main(int argc, char** argv) {
   std::string sweep_lower = "none";
   w->add_option("--lower", sweep_lower, "lower-order term of the swept operator")
       ->check(CLI::IsMember({"none", "momentum", "shift", "shift-no-hole"}));
+  int robin_n = 128;
+  auto* b = app.add_subcommand("robin", "one relaxation and one residual of the outer-boundary rows, ms");
+  b->add_option("--n", robin_n, "intervals per axis, a power of 2");
+  b->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
   if (w->parsed()) return bhnsid::bench::vector_sweep(sweep_n, threads, sweep_lower);
+  if (b->parsed()) return bhnsid::bench::robin_rows(robin_n, threads);
   if (q->parsed()) {
     try {
       return puncture(pn, threads, reps, puncture_tau);
