@@ -217,7 +217,7 @@ void robin_relax(const RobinRows& rows, const std::vector<RobinTarget>& targets)
               x[t].fixed && x[t].fixed[p] ? x[t].u[p] : x[t].u_inf + sum[t] + (x[t].rhs ? x[t].rhs[p] : 0.0);
       });
       const auto n = static_cast<std::ptrdiff_t>(rows.size());
-#pragma omp for schedule(static)
+#pragma omp for schedule(static, 256)  // as row_sums: the x faces' rows are the costly ones
       for (std::ptrdiff_t r = 0; r < n; ++r)
         for (int t = 0; t < N; ++t)
           x[t].u[rows.point[static_cast<std::size_t>(r)]] = next[static_cast<std::size_t>(r) * N + t];

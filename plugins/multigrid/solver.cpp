@@ -173,11 +173,14 @@ void FasSolver::residual_of(const Slot& s, int l, bool rows_done) {
     const RobinRows& r = rows(s, l);
     const std::vector<double>& face = face_residuals_[static_cast<std::size_t>(s.rows)];
     const std::size_t width = face.size() / std::max<std::size_t>(r.size(), 1);
-    for (int c = 0; c < s.ncomp; ++c) {
-      double* o = out[static_cast<std::size_t>(c)];
-      const std::size_t column = static_cast<std::size_t>(s.face_column + c);
-      for (std::size_t row = 0; row < r.size(); ++row) o[r.point[row]] = face[row * width + column];
-    }
+    const auto rows_count = static_cast<std::ptrdiff_t>(r.size());
+    const std::ptrdiff_t* point = r.point.data();
+    // The x faces' points are a cache line each: the scatter is worth the threads.
+#pragma omp parallel for schedule(static, 256)
+    for (std::ptrdiff_t row = 0; row < rows_count; ++row)
+      for (int c = 0; c < s.ncomp; ++c)
+        out[static_cast<std::size_t>(c)][point[row]] =
+            face[static_cast<std::size_t>(row) * width + static_cast<std::size_t>(s.face_column + c)];
   }
   if (lv.z_symmetry)
     for (int c = 0; c < s.ncomp; ++c) grid_.fill_ghosts(out[static_cast<std::size_t>(c)], s.parity[static_cast<std::size_t>(c)], l);
