@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <set>
 
 #include "bhnsid/core/errors.hpp"
@@ -196,8 +195,7 @@ void FasSolver::descend(int l) {
   const Level& coarse = grid_.level(cl);
   for (const Slot& s : slots_)
     for (int c = 0; c < s.ncomp; ++c) {
-      restrict_injection(fine, coarse, grid_.data(s.u, c, l), grid_.data(s.u, c, cl));
-      std::memcpy(grid_.data(s.old, c, cl), grid_.data(s.u, c, cl), coarse.size * sizeof(double));
+      restrict_injection(fine, coarse, grid_.data(s.u, c, l), grid_.data(s.u, c, cl), grid_.data(s.old, c, cl));
     }
   fill_ghosts(cl);
   boundary_residuals(l);
@@ -299,8 +297,8 @@ void FasSolver::prepare() {
     if (l > 0)
       for (const Slot& s : slots_)
         for (int c = 0; c < s.ncomp; ++c) {
-          restrict_injection(grid_.level(l - 1), grid_.level(l), grid_.data(s.u, c, l - 1), grid_.data(s.u, c, l));
-          std::memcpy(grid_.data(s.old, c, l), grid_.data(s.u, c, l), grid_.level(l).size * sizeof(double));
+          restrict_injection(grid_.level(l - 1), grid_.level(l), grid_.data(s.u, c, l - 1), grid_.data(s.u, c, l),
+                             grid_.data(s.old, c, l));
         }
     fill_ghosts(l);
   }

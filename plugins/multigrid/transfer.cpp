@@ -62,13 +62,17 @@ void restrict_full_weighting_minus(const Level& fine, const Level& coarse, const
   full_weighting(fine, coarse, f, minus, c, fold_faces);
 }
 
-void restrict_injection(const Level& fine, const Level& coarse, const double* f, double* c) {
+void restrict_injection(const Level& fine, const Level& coarse, const double* f, double* c, double* copy) {
 #pragma omp parallel for schedule(static)
   for (int kc = 0; kc < coarse.nz; ++kc)
     for (int jc = 0; jc < coarse.ny; ++jc) {
       const double* src = f + fine.at(0, 2 * jc, 2 * kc);
       double* dst = c + coarse.at(0, jc, kc);
       for (int ic = 0; ic < coarse.nx; ++ic) dst[ic] = src[2 * ic];
+      if (copy) {
+        double* again = copy + coarse.at(0, jc, kc);
+        for (int ic = 0; ic < coarse.nx; ++ic) again[ic] = dst[ic];
+      }
     }
 }
 

@@ -19,8 +19,9 @@ void restrict_full_weighting_minus(const Level& fine, const Level& coarse, const
 /// coefficient fields, whose face values the interior stencils never read.
 void restrict_full_weighting(const Level& fine, const Level& coarse, const double* f, double* c);
 
-/// c = f at coincident points, all stored coarse points (faces included).
-void restrict_injection(const Level& fine, const Level& coarse, const double* f, double* c);
+/// c = f at coincident points, all stored coarse points (faces included); the same into copy too
+/// when given (the FAS start u_H^old, stored points only: nothing reads its ghosts).
+void restrict_injection(const Level& fine, const Level& coarse, const double* f, double* c, double* copy = nullptr);
 
 /// fine += trilinear interpolation of (coarse - coarse_old) at the fine points that are not held:
 /// interior points, and face points too when `faces` (Robin rows are unknowns, Dirichlet rows not).
