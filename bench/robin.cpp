@@ -3,7 +3,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -11,25 +10,9 @@
 
 #include "multigrid/boundary_rows.hpp"
 #include "test_level.hpp"
+#include "timing.hpp"
 
 namespace bhnsid::bench {
-
-namespace {
-
-/// Best of 5 rounds of `reps` calls, seconds per call.
-template <class Fn>
-double best_seconds(int reps, Fn&& fn) {
-  fn();  // warm-up
-  double best = 1e300;
-  for (int round = 0; round < 5; ++round) {
-    const auto start = std::chrono::steady_clock::now();
-    for (int r = 0; r < reps; ++r) fn();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / reps);
-  }
-  return best;
-}
-
-}  // namespace
 
 int robin_rows(int n, int threads) {
   if (n < 8 || (n & (n - 1)) != 0) {

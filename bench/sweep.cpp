@@ -2,7 +2,7 @@
 
 #include <omp.h>
 
-#include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -12,6 +12,7 @@
 #include "momentum/kernels.hpp"
 #include "shift/kernels.hpp"
 #include "test_level.hpp"
+#include "timing.hpp"
 
 namespace bhnsid::bench {
 
@@ -41,15 +42,7 @@ struct Coefficients {
 template <class Lower>
 double best_sweep_seconds(const Level& lv, const stencil::Components& v, const std::uint8_t* fixed, const Lower& lower,
                           int reps) {
-  auto sweep = [&] { stencil::vector_relax_any(lv, v, nullptr, fixed, 1.15, [] {}, lower); };
-  sweep();  // first touch
-  double best = 1e300;
-  for (int round = 0; round < 5; ++round) {
-    const auto start = std::chrono::steady_clock::now();
-    for (int r = 0; r < reps; ++r) sweep();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / reps);
-  }
-  return best;
+  return best_seconds(reps, [&] { stencil::vector_relax_any(lv, v, nullptr, fixed, 1.15, [] {}, lower); });
 }
 
 }  // namespace

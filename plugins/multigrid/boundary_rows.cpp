@@ -171,23 +171,12 @@ void in_batches(const std::vector<Item>& items, Fn&& fn) {
 
 }  // namespace
 
-void robin_residual(const RobinRows& rows, const std::vector<RobinResidual>& fields) {
-  in_batches(fields, [&](auto batch, const RobinResidual* f, const auto& u, const auto& u_inf) {
-    constexpr int N = decltype(batch)::value;
-#pragma omp parallel
-    row_sums<N>(rows, u, u_inf, [&](std::size_t r, const std::array<double, N>& sum) {
-      const std::ptrdiff_t p = rows.point[r];
-      for (int t = 0; t < N; ++t) {
-        const RobinResidual& x = f[t];
-        const double b = (x.u[p] - x.u_inf) - sum[t];
-        x.res[p] = x.fixed && x.fixed[p] ? 0.0 : (x.rhs ? x.rhs[p] : 0.0) - b;
-      }
-    });
-  });
-}
+namespace {
 
-void robin_residual_rows(const RobinRows& rows, const std::vector<RobinResidual>& fields, double* out) {
-  const std::size_t n = fields.size();
+/// Every row's residual of every field, rhs - B(u) (rhs nullptr: zero; 0 at held points), handed
+/// to store(r, t, p, value) for row r, field t (its index in fields) and the row's point p.
+template <class Store>
+void row_residuals(const RobinRows& rows, const std::vector<RobinResidual>& fields, Store&& store) {
   in_batches(fields, [&](auto batch, const RobinResidual* f, const auto& u, const auto& u_inf) {
     constexpr int N = decltype(batch)::value;
     const std::size_t first = static_cast<std::size_t>(f - fields.data());
@@ -197,10 +186,23 @@ void robin_residual_rows(const RobinRows& rows, const std::vector<RobinResidual>
       for (int t = 0; t < N; ++t) {
         const RobinResidual& x = f[t];
         const double b = (x.u[p] - x.u_inf) - sum[t];
-        out[r * n + first + static_cast<std::size_t>(t)] = x.fixed && x.fixed[p] ? 0.0 : (x.rhs ? x.rhs[p] : 0.0) - b;
+        store(r, first + static_cast<std::size_t>(t), p, x.fixed && x.fixed[p] ? 0.0 : (x.rhs ? x.rhs[p] : 0.0) - b);
       }
     });
   });
+}
+
+}  // namespace
+
+void robin_residual(const RobinRows& rows, const std::vector<RobinResidual>& fields) {
+  row_residuals(rows, fields,
+                [&](std::size_t, std::size_t t, std::ptrdiff_t p, double value) { fields[t].res[p] = value; });
+}
+
+void robin_residual_rows(const RobinRows& rows, const std::vector<RobinResidual>& fields, double* out) {
+  const std::size_t n = fields.size();
+  row_residuals(rows, fields,
+                [&](std::size_t r, std::size_t t, std::ptrdiff_t, double value) { out[r * n + t] = value; });
 }
 
 void robin_relax(const RobinRows& rows, const std::vector<RobinTarget>& targets) {
