@@ -3,10 +3,12 @@
 // to the second-order interpolation error.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "boundary_rows.hpp"
+#include "sweep_test_support.hpp"
 #include "test_level.hpp"
 #include "transfer.hpp"
 
@@ -156,5 +158,37 @@ TEST_CASE("plugins.multigrid.robin_rows_second_order_for_a_dipole", "[plugins][m
     }
     INFO((two_point ? "two-point" : "three-point") << " rows: differences " << d[0] << ", " << d[1]);
     CHECK(d[0] / d[1] == Approx(two_point ? 2.0 : 4.0).margin(0.5));
+  }
+}
+
+TEST_CASE("plugins.multigrid.robin_rows_the_same_on_any_number_of_threads", "[plugins][multigrid]") {
+  // The threads build contiguous runs of face rows and write them into arrays sized in a first
+  // pass: the rows must be those of one thread, entry for entry, and a failure must be the first
+  // face point in order, whichever thread meets it.
+  const Level lv = make_level(32, 0.125, true);
+  const std::array<double, 3> x0{0.3, -0.1, 0.0};
+  const RobinRows one = [&] {
+    const bhnsid::test::Threads serial(1);
+    return robin_stencils(lv, x0, false);
+  }();
+  for (int threads : {2, 3, 5}) {
+    const bhnsid::test::Threads scoped(threads);
+    const RobinRows many = robin_stencils(lv, x0, false);
+    INFO(threads << " threads");
+    REQUIRE(many.size() == one.size());
+    CHECK(std::equal(many.point.begin(), many.point.end(), one.point.begin()));
+    CHECK(std::equal(many.begin.begin(), many.begin.end(), one.begin.begin()));
+    CHECK(std::equal(many.scale.begin(), many.scale.end(), one.scale.begin()));
+    REQUIRE(many.index.size() == one.index.size());
+    CHECK(std::equal(many.index.begin(), many.index.end(), one.index.begin()));
+    CHECK(std::equal(many.weight.begin(), many.weight.end(), one.weight.begin()));
+  }
+  // A centre 1.2 cells inside the top face (z = 2): the nine points of the top plane within one
+  // cell of its foot fail, and the first of them in order is (-h, -h, 2) on any number of threads.
+  const std::array<double, 3> close{0.0, 0.0, 2.0 - 1.2 * 0.125};
+  for (int threads : {1, 3}) {
+    const bhnsid::test::Threads scoped(threads);
+    INFO(threads << " threads");
+    CHECK_THROWS_WITH(robin_stencils(lv, close, false), Catch::Contains("face point (-0.125, -0.125, 2) on level 0"));
   }
 }
