@@ -9,56 +9,9 @@
 #include <new>
 #include <utility>
 
-#include <sys/mman.h>
-
 #include "bhnsid/core/errors.hpp"
 
 namespace bhnsid::grid {
-
-namespace {
-
-// Every block starts with a header one cache line before the pointer handed out, saying how to
-// give it back: large blocks are their own anonymous mappings, small ones come from the heap.
-struct BlockHeader {
-  void* base;
-  std::size_t length;  // of the mapping; 0 for a heap block
-};
-constexpr std::size_t header_space = 64;
-constexpr std::size_t huge_page = std::size_t{2} << 20;
-
-}  // namespace
-
-void* allocate_zeroed(std::size_t bytes) {
-  if (bytes + header_space >= huge_page) {
-    // A fresh anonymous mapping is zero already, so no memset pass over hundreds of MiB: the
-    // kernel zeroes each page at its first touch. 2 MiB alignment plus MADV_HUGEPAGE gets huge
-    // pages under the usual defrag=madvise setting (4 KiB pages cost a fault per page: a sixth of
-    // an N = 255 Poisson run, and TLB misses in the sweeps).
-    const std::size_t length = (bytes + header_space + 2 * huge_page - 1) / huge_page * huge_page;
-    void* base = mmap(nullptr, length, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (base == MAP_FAILED) throw std::bad_alloc();
-    const auto start = reinterpret_cast<std::uintptr_t>(base) + header_space;
-    auto* p = reinterpret_cast<char*>((start + huge_page - 1) / huge_page * huge_page);
-    madvise(p, bytes, MADV_HUGEPAGE);
-    *reinterpret_cast<BlockHeader*>(p - header_space) = BlockHeader{base, length};
-    return p;
-  }
-  const std::size_t rounded = (bytes + 63) / 64 * 64;
-  auto* base = static_cast<char*>(std::aligned_alloc(64, header_space + (rounded == 0 ? 64 : rounded)));
-  if (!base) throw std::bad_alloc();
-  std::memset(base + header_space, 0, rounded == 0 ? 64 : rounded);
-  *reinterpret_cast<BlockHeader*>(base) = BlockHeader{base, 0};
-  return base + header_space;
-}
-
-void release_block(void* p) {
-  if (!p) return;
-  const BlockHeader header = *reinterpret_cast<const BlockHeader*>(static_cast<char*>(p) - header_space);
-  if (header.length > 0)
-    munmap(header.base, header.length);
-  else
-    std::free(header.base);
-}
 
 UniformGrid::UniformGrid(std::vector<Level> levels, Symmetry symmetry)
     : levels_(std::move(levels)), symmetry_(symmetry) {}
@@ -104,7 +57,7 @@ int UniformGrid::add_field(const std::string& name, const std::vector<core::Tens
     const std::size_t count = storage == core::Storage::finest_only ? 1 : levels_.size();
     for (std::size_t l = first; l < count; ++l) {
       const std::size_t bytes = levels_[l].size * sizeof(double);
-      per_level[l].reset(static_cast<double*>(allocate_zeroed(bytes)));
+      per_level[l].reset(static_cast<double*>(arena_.allocate(bytes)));
       bytes_ += bytes;
     }
   }
@@ -173,7 +126,7 @@ int UniformGrid::add_mask(const std::string& name, const ExcisionRegion& region)
     throw core::RunFailure(fmt::format("grid: mask '{}' needs a positive half size, got {}", name, region.half_size));
   Mask mask{name, region, {}};
   for (const Level& lv : levels_) {
-    ByteArray bytes(static_cast<std::uint8_t*>(allocate_zeroed(lv.size)));
+    ByteArray bytes(static_cast<std::uint8_t*>(arena_.allocate(lv.size)));
     bytes_ += lv.size;
     // A small tolerance keeps points exactly on the region's surface inside on every level.
     const double tol = 1e-10 * lv.dx;

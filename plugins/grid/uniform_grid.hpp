@@ -9,20 +9,9 @@
 #include <vector>
 
 #include "bhnsid/interfaces/grid.hpp"
+#include "blocks.hpp"
 
 namespace bhnsid::grid {
-
-/// Returns a block from allocate_zeroed to where it came from.
-void release_block(void* p);
-struct FreeDeleter {
-  void operator()(void* p) const { release_block(p); }
-};
-using DoubleArray = std::unique_ptr<double[], FreeDeleter>;
-using ByteArray = std::unique_ptr<std::uint8_t[], FreeDeleter>;
-
-/// Zeroed block of `bytes` bytes (never null), 64-byte aligned, or 2 MiB aligned from 2 MiB up so
-/// that the kernel can back it with huge pages (fewer TLB misses and page faults in the sweeps).
-void* allocate_zeroed(std::size_t bytes);
 
 class UniformGrid final : public Grid {
  public:
@@ -74,6 +63,7 @@ class UniformGrid final : public Grid {
 
   std::vector<Level> levels_;
   Symmetry symmetry_;
+  BlockArena arena_;          // before the fields and masks: destroyed after the arrays it holds
   std::deque<Field> fields_;  // a deque: references from field_info() survive add_field()
   std::map<std::string, int> field_ids_;
   std::vector<Mask> masks_;

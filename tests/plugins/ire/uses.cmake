@@ -1,3 +1,3 @@
 # The evaluator is tested on the real serial grid (its levels, symmetry and field storage).
 set(uses_plugin grid)
-set(uses_sources uniform_grid.cpp grid_sampling.cpp hierarchy.cpp)
+set(uses_sources uniform_grid.cpp blocks.cpp grid_sampling.cpp hierarchy.cpp)
