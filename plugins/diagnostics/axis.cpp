@@ -51,6 +51,7 @@ std::map<std::string, double> deviations(const Grid& grid) {
   const Level& lv = grid.finest();
   auto largest = [&](const double* v, double offset) {
     double m = 0;
+#pragma omp parallel for schedule(static) reduction(max : m)
     for (int k = 0; k < lv.nz; ++k)
       for (int j = 0; j < lv.ny; ++j) {
         const double* row = v + lv.at(0, j, k);
