@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "bhnsid/core/errors.hpp"
+#include "bhnsid/interfaces/stencil.hpp"
 
 namespace bhnsid::multigrid {
 
@@ -266,7 +267,7 @@ void row_residuals(const RobinRows& rows, const std::vector<RobinResidual>& fiel
   in_batches(fields, [&](auto batch, const RobinResidual* f, const auto& u, const auto& u_inf) {
     constexpr int N = decltype(batch)::value;
     const std::size_t first = static_cast<std::size_t>(f - fields.data());
-#pragma omp parallel
+#pragma omp parallel if (static_cast<long>(rows.size()) >= stencil::parallel_min_points)
     row_sums<N>(rows, u, u_inf, [&](std::size_t r, const std::array<double, N>& sum) {
       const std::ptrdiff_t p = rows.point[r];
       for (int t = 0; t < N; ++t) {
@@ -296,7 +297,7 @@ void robin_relax(const RobinRows& rows, const std::vector<RobinTarget>& targets)
     constexpr int N = decltype(batch)::value;
     rows.next.resize(rows.size() * N);
     double* next = rows.next.data();
-#pragma omp parallel
+#pragma omp parallel if (static_cast<long>(rows.size()) >= stencil::parallel_min_points)
     {
       row_sums<N>(rows, u, u_inf, [&](std::size_t r, const std::array<double, N>& sum) {
         const std::ptrdiff_t p = rows.point[r];

@@ -175,7 +175,7 @@ void FasSolver::residual_of(const Slot& s, int l, bool rows_done) {
     const auto rows_count = static_cast<std::ptrdiff_t>(r.size());
     const std::ptrdiff_t* point = r.point.data();
     // The x faces' points are a cache line each: the scatter is worth the threads.
-#pragma omp parallel for schedule(static, 256)
+#pragma omp parallel for schedule(static, 256) if (rows_count >= stencil::parallel_min_points)
     for (std::ptrdiff_t row = 0; row < rows_count; ++row)
       for (int c = 0; c < s.ncomp; ++c)
         out[static_cast<std::size_t>(c)][point[row]] =
@@ -312,7 +312,7 @@ double FasSolver::rms_interior(const Slot& s, const std::vector<const double*>& 
   double sum = 0, count = 0;
   for (int c = 0; c < s.ncomp; ++c) {
     const double* v = field[static_cast<std::size_t>(c)];
-#pragma omp parallel for reduction(+ : sum, count) schedule(static)
+#pragma omp parallel for reduction(+ : sum, count) schedule(static) if (stencil::interior_points(lv) >= stencil::parallel_min_points)
     for (int k = lv.k_begin(); k < lv.nz - 1; ++k)
       for (int j = 1; j < lv.ny - 1; ++j) {
         const double* row = v + lv.at(0, j, k);

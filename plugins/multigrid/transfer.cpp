@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "bhnsid/interfaces/stencil.hpp"
+
 namespace bhnsid::multigrid {
 namespace {
 
@@ -19,7 +21,7 @@ inline double side_weight(int d, int I, int last, bool low_is_face, bool fold) {
 // c = FW(f) - minus at coarse interior points (minus may be nullptr).
 void full_weighting(const Level& fl, const Level& cl, const double* f, const double* minus, double* c, bool fold) {
   const int kc0 = cl.k_begin(), kc1 = cl.nz - 1;
-#pragma omp parallel
+#pragma omp parallel if (static_cast<long>(cl.size) >= stencil::parallel_min_points)
   {
     // Per thread: the fine plane weighted in z, then in y, leaving only the x sum per coarse point.
     std::vector<double> zrow(static_cast<std::size_t>(fl.nx)), yzrow(static_cast<std::size_t>(fl.nx));
@@ -63,7 +65,7 @@ void restrict_full_weighting_minus(const Level& fine, const Level& coarse, const
 }
 
 void restrict_injection(const Level& fine, const Level& coarse, const double* f, double* c, double* copy) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (static_cast<long>(coarse.size) >= stencil::parallel_min_points)
   for (int kc = 0; kc < coarse.nz; ++kc)
     for (int jc = 0; jc < coarse.ny; ++jc) {
       const double* src = f + fine.at(0, 2 * jc, 2 * kc);
@@ -87,7 +89,7 @@ void prolong_correction(const Level& cl, const Level& fl, const double* c, const
   const int k1 = faces ? fl.nz : fl.nz - 1;
   const int j0 = faces ? 0 : 1, j1 = faces ? fl.ny : fl.ny - 1;
   const int i0 = faces ? 0 : 1, i1 = faces ? fl.nx : fl.nx - 1;
-#pragma omp parallel
+#pragma omp parallel if (static_cast<long>(fl.size) >= stencil::parallel_min_points)
   {
     std::vector<double> row(static_cast<std::size_t>(cl.nx));
 #pragma omp for schedule(static)
@@ -171,7 +173,7 @@ void prolong_correction_cubic(const Level& cl, const Level& fl, const double* c,
                               const std::uint8_t* fixed, bool faces) {
   const int k0 = faces ? 0 : fl.k_begin(), k1 = faces ? fl.nz : fl.nz - 1;
   const std::size_t plane_size = static_cast<std::size_t>(cl.nx) * static_cast<std::size_t>(cl.ny);
-#pragma omp parallel
+#pragma omp parallel if (static_cast<long>(fl.size) >= stencil::parallel_min_points)
   {
     std::vector<double> plane(plane_size), row(static_cast<std::size_t>(cl.nx));
 #pragma omp for schedule(static)

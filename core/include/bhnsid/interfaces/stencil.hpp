@@ -12,12 +12,22 @@
 
 namespace bhnsid::stencil {
 
+/// A loop over fewer points than this runs on one thread: on the coarsest levels (n = 4, 8: 18
+/// and 200 interior points) the wake-up and barrier of a parallel region cost more than the loop,
+/// and the coarsest level's Jacobian alone evaluates the residual of every equation 600 times.
+constexpr long parallel_min_points = 1024;
+
+/// Interior points of a level.
+inline long interior_points(const Level& lv) {
+  return static_cast<long>(lv.nx - 2) * (lv.ny - 2) * (lv.nz - 1 - lv.k_begin());
+}
+
 /// Calls row(j, k) for every interior row of the level, planes distributed over OpenMP threads.
 /// The row's interior points are i = 1 .. nx-2.
 template <class RowFn>
 inline void for_interior_rows(const Level& lv, RowFn&& row) {
   const int k0 = lv.k_begin(), k1 = lv.nz - 1, j1 = lv.ny - 1;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (interior_points(lv) >= parallel_min_points)
   for (int k = k0; k < k1; ++k)
     for (int j = 1; j < j1; ++j) row(j, k);
 }
@@ -68,8 +78,9 @@ inline void red_black_sweep(const Level& lv, PlaneFn&& plane, MirrorFn&& mirror)
   const int k0 = lv.k_begin(), k1 = lv.nz - 1, planes = k1 - k0;
   const int threads = omp_get_max_threads();
   if (planes < 4 * threads) {
+    const bool parallel = interior_points(lv) / 2 >= parallel_min_points;
     for (int colour = 0; colour < 2; ++colour) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (parallel)
       for (int k = k0; k < k1; ++k) plane(k, colour);
       if (colour == 0 && lv.z_symmetry) mirror();
     }

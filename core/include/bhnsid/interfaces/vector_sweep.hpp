@@ -114,13 +114,12 @@ void vector_residual(const Level& lv, ConstComponents v, const double* const* rh
 // passes over the planes, even then odd (counted from k_begin): no plane is written while a neighbour
 // reads it, and the Gauss-Seidel order within the colour is the same on any number of threads.
 /// Planes [k0, k1) of points_per_plane points each (default: every interior plane of the level). A
-/// pass over fewer than parallel_min_points points (the coarsest levels) runs on one thread: the
-/// wake-up of a parallel region costs more than it saves there. The shift's box about the hole
-/// (about 1 800 points per pass at n = 128) and the level of n = 32 (7 700) run in parallel: on one
-/// thread they left the other idle for a tenth of the eight-equation solve on 2 threads (with
-/// GOMP's default wait policy; under OMP_WAIT_POLICY=passive each wake-up is a futex call and 2
-/// threads are slower than 1 with any threshold, docs/performance.md).
-constexpr long parallel_min_points = 1024;
+/// pass over fewer than parallel_min_points points (the coarsest levels) runs on one thread. The
+/// shift's box about the hole (about 1 800 points per pass at n = 128) and the level of n = 32
+/// (7 700) run in parallel: on one thread they left the other idle for a tenth of the
+/// eight-equation solve on 2 threads (with GOMP's default wait policy; under
+/// OMP_WAIT_POLICY=passive each wake-up is a futex call and 2 threads are slower than 1 with any
+/// threshold, docs/performance.md).
 template <class PlaneFn>
 void colour_in_two_passes(int k0, int k1, long points_per_plane, int colour, PlaneFn&& plane) {
   const bool parallel = (k1 - k0) / 2 * points_per_plane >= parallel_min_points;
