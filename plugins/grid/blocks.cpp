@@ -1,5 +1,6 @@
 #include "blocks.hpp"
 
+#include <algorithm>
 #include <new>
 
 #include <sys/mman.h>
@@ -8,11 +9,11 @@ namespace bhnsid::grid {
 
 namespace {
 
-// Every block starts with a header one cache line before the pointer handed out, saying how to
-// give it back.
+// A block of its own starts with a header one cache line before the pointer handed out, saying
+// how to unmap it (outside the huge-page stretch: a 4 KiB page of the mapping's head).
 struct BlockHeader {
   void* base;
-  std::size_t length;  // of the block's own mapping; 0 for a block of an arena
+  std::size_t length;
 };
 constexpr std::size_t header_space = 64;
 constexpr std::size_t huge_page = std::size_t{2} << 20;
@@ -45,24 +46,24 @@ void* allocate_zeroed(std::size_t bytes) {
 void release_block(void* p) {
   if (!p) return;
   const BlockHeader header = *reinterpret_cast<const BlockHeader*>(static_cast<char*>(p) - header_space);
-  if (header.length > 0) munmap(header.base, header.length);
+  munmap(header.base, header.length);
 }
 
 BlockArena::~BlockArena() {
   for (const auto& [base, length] : slabs_) munmap(base, length);
 }
 
-void* BlockArena::allocate(std::size_t bytes) {
-  if (bytes + header_space >= huge_page) return allocate_zeroed(bytes);
-  const std::size_t need = header_space + (bytes + 63) / 64 * 64;
+void* BlockArena::allocate_bytes(std::size_t bytes, bool& owned) {
+  owned = bytes >= huge_page;
+  if (owned) return allocate_zeroed(bytes);
+  const std::size_t need = std::max<std::size_t>(64, (bytes + 63) / 64 * 64);
   if (need > left_) {
     const auto [start, mapping] = map_huge(slab_size, 0);
     slabs_.push_back(mapping);
     next_ = start;
     left_ = slab_size;
   }
-  char* p = next_ + header_space;
-  *reinterpret_cast<BlockHeader*>(next_) = BlockHeader{nullptr, 0};
+  char* p = next_;
   next_ += need;
   left_ -= need;
   return p;

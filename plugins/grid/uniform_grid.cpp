@@ -57,7 +57,7 @@ int UniformGrid::add_field(const std::string& name, const std::vector<core::Tens
     const std::size_t count = storage == core::Storage::finest_only ? 1 : levels_.size();
     for (std::size_t l = first; l < count; ++l) {
       const std::size_t bytes = levels_[l].size * sizeof(double);
-      per_level[l].reset(static_cast<double*>(arena_.allocate(bytes)));
+      per_level[l] = arena_.allocate<double>(levels_[l].size);
       bytes_ += bytes;
     }
   }
@@ -126,7 +126,7 @@ int UniformGrid::add_mask(const std::string& name, const ExcisionRegion& region)
     throw core::RunFailure(fmt::format("grid: mask '{}' needs a positive half size, got {}", name, region.half_size));
   Mask mask{name, region, {}};
   for (const Level& lv : levels_) {
-    ByteArray bytes(static_cast<std::uint8_t*>(arena_.allocate(lv.size)));
+    ByteArray bytes = arena_.allocate<std::uint8_t>(lv.size);
     bytes_ += lv.size;
     // A small tolerance keeps points exactly on the region's surface inside on every level.
     const double tol = 1e-10 * lv.dx;

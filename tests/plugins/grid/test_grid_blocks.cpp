@@ -1,11 +1,12 @@
 // The grid's memory blocks: every block zeroed, 64-byte aligned and disjoint from every other, the
 // small ones carved from the arena's slabs across slab boundaries, the large ones with mappings of
-// their own that release_block returns.
+// their own that their deleters unmap.
 #include <catch2/catch.hpp>
 
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "blocks.hpp"
@@ -19,16 +20,18 @@ TEST_CASE("plugins.grid.arena_blocks_are_zeroed_aligned_and_disjoint", "[plugins
   std::vector<std::size_t> sizes;
   for (int b = 0; b < 120; ++b) sizes.push_back(b % 6 == 5 ? (std::size_t{2} << 20) + 8 * b : 1 + 9'000 * b);
   BlockArena arena;
-  std::vector<std::uint8_t*> blocks;
+  std::vector<bhnsid::grid::ByteArray> blocks;
   for (std::size_t s : sizes) {
-    auto* p = static_cast<std::uint8_t*>(arena.allocate(s));
+    bhnsid::grid::ByteArray block = arena.allocate<std::uint8_t>(s);
+    std::uint8_t* p = block.get();
     REQUIRE(p != nullptr);
+    CHECK(block.get_deleter().owned == (s >= (std::size_t{2} << 20)));
     CHECK(reinterpret_cast<std::uintptr_t>(p) % 64 == 0);
     std::size_t nonzero = 0;
     for (std::size_t i = 0; i < s; ++i) nonzero += p[i] != 0;
     CHECK(nonzero == 0);
     std::memset(p, static_cast<int>(blocks.size() % 251) + 1, s);  // overlap would overwrite an earlier block
-    blocks.push_back(p);
+    blocks.push_back(std::move(block));
   }
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     INFO("block " << b << " of " << sizes[b] << " bytes");
@@ -37,6 +40,6 @@ TEST_CASE("plugins.grid.arena_blocks_are_zeroed_aligned_and_disjoint", "[plugins
     for (std::size_t i = 0; i < sizes[b]; ++i) wrong += blocks[b][i] != mark;
     CHECK(wrong == 0);
   }
-  // The large blocks are their own mappings: released one by one (the arena's are left to it).
-  for (std::size_t b = 0; b < blocks.size(); ++b) bhnsid::grid::release_block(blocks[b]);
+  // The large blocks are their own mappings, unmapped by their deleters; the small ones go with the
+  // arena's slabs.
 }
