@@ -86,47 +86,53 @@ void reference(const Level& lv, std::vector<double>* v, const std::vector<double
 }  // namespace
 
 TEST_CASE("core.vector_sweep.is_the_plain_red_black_sweep", "[core]") {
-  const Level lv = make_level(16, 0.1, true);
-  std::vector<double> a(lv.size), b(lv.size), v0[3], rhs[3];
-  for (std::size_t idx = 0; idx < lv.size; ++idx) a[idx] = 3 * pattern(idx, 7), b[idx] = 2 * pattern(idx, 8);
-  for (int c = 0; c < 3; ++c) {
-    v0[c].resize(lv.size), rhs[c].resize(lv.size);
-    for (std::size_t idx = 0; idx < lv.size; ++idx) v0[c][idx] = pattern(idx, c), rhs[c][idx] = 50 * pattern(idx, 3 + c);
-  }
-  mirror(lv, v0);
-  // Held: a 3 x 3 x 2 block off the centre, so some rows hold points and most do not.
-  std::vector<std::uint8_t> mask(lv.size, 0);
-  for (int k = 0; k <= 1; ++k)
-    for (int j = 6; j <= 8; ++j)
-      for (int i = 9; i <= 11; ++i) mask[static_cast<std::size_t>(lv.at(i, j, k))] = 1;
-  const Lower lower{a.data(), b.data(), 0.5 / lv.dx, lv.sy, lv.sz};
-  const stencil::Box whole = stencil::interior(lv), box{5, 13, 3, 11, 0, 4};
-  for (const stencil::Box& region : {whole, box})
-    for (const bool held : {false, true}) {
-      const std::uint8_t* fixed = held ? mask.data() : nullptr;
-      std::vector<double> expected[3] = {v0[0], v0[1], v0[2]};
-      reference(lv, expected, rhs, fixed, 1.15, lower, region);
-      std::vector<std::vector<double>> first;
-      for (int threads : {1, 2, 3}) {
-        Threads t(threads);
-        std::vector<double> v[3] = {v0[0], v0[1], v0[2]};
-        const double* rhs_ptrs[3] = {rhs[0].data(), rhs[1].data(), rhs[2].data()};
-        stencil::vector_relax_any(lv, {v[0].data(), v[1].data(), v[2].data()}, rhs_ptrs, fixed, 1.15,
-                                  [&] { mirror(lv, v); }, lower, region);
-        double diff = 0;
-        for (int c = 0; c < 3; ++c)
-          for (std::size_t idx = 0; idx < lv.size; ++idx)
-            diff = std::max(diff, std::fabs(v[c][idx] - expected[c][idx]));
-        INFO("box " << (region.i0 == whole.i0 ? "whole" : "part") << ", held " << held << ", threads " << threads);
-        CHECK(diff <= 1e-12);
-        if (held)
+  // n = 16 runs every colour on one thread (below parallel_min_points); n = 32 in parallel, where
+  // each thread's slab (2 to 16 planes) first relaxes its end planes and then runs its wavefront.
+  for (const int n : {16, 32}) {
+    INFO("n = " << n);
+    const Level lv = make_level(n, 0.1, true);
+    std::vector<double> a(lv.size), b(lv.size), v0[3], rhs[3];
+    for (std::size_t idx = 0; idx < lv.size; ++idx) a[idx] = 3 * pattern(idx, 7), b[idx] = 2 * pattern(idx, 8);
+    for (int c = 0; c < 3; ++c) {
+      v0[c].resize(lv.size), rhs[c].resize(lv.size);
+      for (std::size_t idx = 0; idx < lv.size; ++idx) v0[c][idx] = pattern(idx, c), rhs[c][idx] = 50 * pattern(idx, 3 + c);
+    }
+    mirror(lv, v0);
+    // Held: a 3 x 3 x 2 block off the centre, so some rows hold points and most do not.
+    std::vector<std::uint8_t> mask(lv.size, 0);
+    const int q = n / 16;
+    for (int k = 0; k <= 1; ++k)
+      for (int j = 6 * q; j <= 6 * q + 2; ++j)
+        for (int i = 9 * q; i <= 9 * q + 2; ++i) mask[static_cast<std::size_t>(lv.at(i, j, k))] = 1;
+    const Lower lower{a.data(), b.data(), 0.5 / lv.dx, lv.sy, lv.sz};
+    const stencil::Box whole = stencil::interior(lv), box{5 * q, 13 * q, 3 * q, 11 * q, 0, 4 * q + q / 2};
+    for (const stencil::Box& region : {whole, box})
+      for (const bool held : {false, true}) {
+        const std::uint8_t* fixed = held ? mask.data() : nullptr;
+        std::vector<double> expected[3] = {v0[0], v0[1], v0[2]};
+        reference(lv, expected, rhs, fixed, 1.15, lower, region);
+        std::vector<std::vector<double>> first;
+        for (int threads : {1, 2, 3, 5}) {
+          Threads t(threads);
+          std::vector<double> v[3] = {v0[0], v0[1], v0[2]};
+          const double* rhs_ptrs[3] = {rhs[0].data(), rhs[1].data(), rhs[2].data()};
+          stencil::vector_relax_any(lv, {v[0].data(), v[1].data(), v[2].data()}, rhs_ptrs, fixed, 1.15,
+                                    [&] { mirror(lv, v); }, lower, region);
+          double diff = 0;
           for (int c = 0; c < 3; ++c)
             for (std::size_t idx = 0; idx < lv.size; ++idx)
-              if (mask[idx]) REQUIRE(v[c][idx] == v0[c][idx]);
-        if (first.empty())
-          first = {v[0], v[1], v[2]};
-        else
-          for (int c = 0; c < 3; ++c) CHECK(v[c] == first[static_cast<std::size_t>(c)]);
+              diff = std::max(diff, std::fabs(v[c][idx] - expected[c][idx]));
+          INFO("box " << (region.i0 == whole.i0 ? "whole" : "part") << ", held " << held << ", threads " << threads);
+          CHECK(diff <= 1e-12);
+          if (held)
+            for (int c = 0; c < 3; ++c)
+              for (std::size_t idx = 0; idx < lv.size; ++idx)
+                if (mask[idx]) REQUIRE(v[c][idx] == v0[c][idx]);
+          if (first.empty())
+            first = {v[0], v[1], v[2]};
+          else
+            for (int c = 0; c < 3; ++c) CHECK(v[c] == first[static_cast<std::size_t>(c)]);
+        }
       }
-    }
+  }
 }
