@@ -21,7 +21,8 @@ struct FreeDeleter {
 using DoubleArray = std::unique_ptr<double[], FreeDeleter>;
 using ByteArray = std::unique_ptr<std::uint8_t[], FreeDeleter>;
 
-/// A zeroed block of `bytes` bytes (never null) in a mapping of its own, 2 MiB aligned from 2 MiB up.
+/// A zeroed block of `bytes` bytes (never null) in a mapping of its own, 2 MiB aligned: for blocks of
+/// 2 MiB and more (BlockArena::allocate carves the smaller ones from shared slabs).
 void* allocate_zeroed(std::size_t bytes);
 
 /// Blocks of 2 MiB and more get mappings of their own (allocate_zeroed); smaller ones (the coarse

@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <new>
 #include <utility>
 
 #include "bhnsid/core/errors.hpp"

@@ -1,7 +1,6 @@
 #pragma once
 // The serial grid: one uniform vertex-centred level per multigrid depth, fields as aligned plain
 // arrays, ghost points only on the symmetry plane, reductions that are the identity.
-#include <cstdlib>
 #include <deque>
 #include <map>
 #include <memory>
