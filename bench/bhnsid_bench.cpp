@@ -4,6 +4,7 @@
 //   bhnsid-bench puncture --n N [--threads T] [--reps R]
 //   bhnsid-bench sweep [--n N] [--threads T] [--lower none|momentum|shift|shift-no-hole]
 //   bhnsid-bench robin [--n N] [--threads T]
+//   bhnsid-bench colour-split [--n N] [--threads T]
 //
 // solves the hypre peer's problem (../shared/peers/src/problem.hpp: -Laplace u = f on the unit
 // cube, N^3 interior unknowns, h = 1/(N+1), homogeneous Dirichlet, u = g(x)g(y)g(z) with
@@ -30,6 +31,7 @@
 #include "bhnsid/core/parfile.hpp"
 #include "bhnsid/core/run.hpp"
 #include "bhnsid/core/yaml_tree.hpp"
+#include "colour_split.hpp"
 #include "robin.hpp"
 #include "sweep.hpp"
 
@@ -248,8 +250,14 @@ int main(int argc, char** argv) {
   auto* b = app.add_subcommand("robin", "one relaxation and one residual of the outer-boundary rows, ms");
   b->add_option("--n", robin_n, "intervals per axis, a power of 2");
   b->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  int split_n = 128;
+  auto* cs = app.add_subcommand("colour-split",
+                                "core's vector sweep (principal part) beside the same sweep on colour-split storage, ns per point");
+  cs->add_option("--n", split_n, "intervals per axis, a power of 2 >= 32");
+  cs->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
   if (w->parsed()) return bhnsid::bench::vector_sweep(sweep_n, threads, sweep_lower);
+  if (cs->parsed()) return bhnsid::bench::colour_split_sweep(split_n, threads);
   if (b->parsed()) return bhnsid::bench::robin_rows(robin_n, threads);
   if (q->parsed()) {
     try {
