@@ -10,18 +10,13 @@
 #include <vector>
 
 #include "bhnsid/interfaces/vector_sweep.hpp"
+#include "no_lower_term.hpp"
 #include "test_level.hpp"
 #include "timing.hpp"
 
 namespace bhnsid::bench {
 
 namespace {
-
-struct NoLowerTerm {
-  stencil::Triple at(std::ptrdiff_t, std::ptrdiff_t, const stencil::Rows&, const stencil::Rows&, const stencil::Rows&) const {
-    return {0.0, 0.0, 0.0};
-  }
-};
 
 /// Colour-split storage of one level (no symmetry, no ghosts): point (i, j, k) of colour
 /// c = (i + j + k) % 2 at colour[c][(k ny + j) nh + i / 2]. In row (j, k) the points of colour c

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bhnsid/interfaces/vector_sweep.hpp"
+#include "no_lower_term.hpp"
 #include "momentum/kernels.hpp"
 #include "shift/kernels.hpp"
 #include "test_level.hpp"
@@ -17,12 +18,6 @@
 namespace bhnsid::bench {
 
 namespace {
-
-struct NoLowerTerm {
-  stencil::Triple at(std::ptrdiff_t, std::ptrdiff_t, const stencil::Rows&, const stencil::Rows&, const stencil::Rows&) const {
-    return {0.0, 0.0, 0.0};
-  }
-};
 
 // Smooth stand-ins for the coefficient fields the lower-order terms read: positive chi and eta of
 // order 1 and an Ahat of order 1e-2, varying on a few cells so that no term is constant.
