@@ -183,12 +183,14 @@ TEST_CASE("plugins.multigrid.robin_rows_the_same_on_any_number_of_threads", "[pl
     CHECK(std::equal(many.index.begin(), many.index.end(), one.index.begin()));
     CHECK(std::equal(many.weight.begin(), many.weight.end(), one.weight.begin()));
   }
-  // A centre 1.2 cells inside the top face (z = 2): the nine points of the top plane within one
-  // cell of its foot fail, and the first of them in order is (-h, -h, 2) on any number of threads.
-  const std::array<double, 3> close{0.0, 0.0, 2.0 - 1.2 * 0.125};
+  // A centre 1.2 cells inside the face x = 2 at z = 1: the nine face points within one cell of its
+  // foot fail, in the planes z = 0.875, 1, 1.125; on 3 threads the first thread's rows end within
+  // them, so two threads fail, and the first point in order, (2, -0.125, 0.875), must be the one
+  // reported.
+  const std::array<double, 3> close{2.0 - 1.2 * 0.125, 0.0, 1.0};
   for (int threads : {1, 3}) {
     const bhnsid::test::Threads scoped(threads);
     INFO(threads << " threads");
-    CHECK_THROWS_WITH(robin_stencils(lv, close, false), Catch::Contains("face point (-0.125, -0.125, 2) on level 0"));
+    CHECK_THROWS_WITH(robin_stencils(lv, close, false), Catch::Contains("face point (2, -0.125, 0.875) on level 0"));
   }
 }
