@@ -69,7 +69,27 @@ class Silence {
 struct Measured {
   double seconds;
   json summary;
+  double cycle_seconds = 0;  ///< mean of the cycles after the FMG start (each with its residual check)
 };
+
+// The mean time of the V-cycles on the finest level after the FMG start, from the run's
+// multigrid_history.tsv (cycle, seconds, ...): what one cycle of the equations costs, apart from
+// how many cycles they need and from set-up.
+double mean_cycle_seconds(const fs::path& history) {
+  std::ifstream in(history);
+  std::string line;
+  double sum = 0;
+  int count = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream row(line);
+    int cycle = 0;
+    double seconds = 0;
+    if (!(row >> cycle >> seconds)) throw std::runtime_error("unreadable line in " + history.string() + ": " + line);
+    if (cycle >= 1) sum += seconds, ++count;
+  }
+  return count > 0 ? sum / count : 0.0;
+}
 
 Measured run_once(const std::string& parfile_text, const std::vector<std::string>& overrides,
                   const fs::path& directory) {
@@ -93,7 +113,7 @@ Measured run_once(const std::string& parfile_text, const std::vector<std::string
   if (result.exit_code != 0)
     throw std::runtime_error("the benchmark run failed (status " + result.status + "); see " +
                              (directory / "log.txt").string());
-  return {seconds, summary};
+  return {seconds, summary, mean_cycle_seconds(directory / "multigrid_history.tsv")};
 }
 
 Measured best_of(const std::string& parfile_text, const std::vector<std::string>& overrides, int reps) {
@@ -122,7 +142,8 @@ std::string poisson_parfile(int n, int threads, double tau_factor) {
 // N = n - 1 interior points per axis, no symmetry), both solved with the solver's defaults to
 // |r| <= 1e-3 |tau| in one process: the measure of what the physics costs over Poisson.
 // "ratio" and "median_pair_ratio" compare whole runs (as the Poisson benchmark times them);
-// "solve_ratio" and "median_pair_solve_ratio" the multigrid cycles alone (FMG and cycles).
+// "solve_ratio" and "median_pair_solve_ratio" the multigrid cycles alone (FMG and cycles);
+// "median_pair_cycle_ratio" one finest-level cycle after the FMG start.
 int puncture(int n, int threads, int reps, double tau_factor) {
   if (n < 8 || (n & (n - 1)) != 0) {
     std::cerr << "bhnsid-bench puncture: --n must be a power of 2 (intervals), got " << n << "\n";
@@ -140,7 +161,7 @@ int puncture(int n, int threads, int reps, double tau_factor) {
   const std::string poisson_par = poisson_parfile(n - 1, threads, tau_factor);
   const fs::path directory = fs::temp_directory_path() / ("bhnsid-bench-" + std::to_string(getpid()));
   Measured eight{1e300, {}}, poisson{1e300, {}};
-  std::vector<double> pair_ratios, pair_solve_ratios;
+  std::vector<double> pair_ratios, pair_solve_ratios, pair_cycle_ratios;
   auto solve_seconds = [](const Measured& m) { return m.summary["scalars"].value("multigrid_seconds", 0.0); };
   for (int r = 0; r <= reps; ++r) {
     const Measured a = run_once(par.str(), {}, directory), b = run_once(poisson_par, {}, directory);
@@ -149,6 +170,7 @@ int puncture(int n, int threads, int reps, double tau_factor) {
     if (b.seconds < poisson.seconds) poisson = b;
     pair_ratios.push_back(a.seconds / b.seconds);
     pair_solve_ratios.push_back(solve_seconds(a) / std::max(1e-300, solve_seconds(b)));
+    pair_cycle_ratios.push_back(a.cycle_seconds / std::max(1e-300, b.cycle_seconds));
   }
   fs::remove_all(directory);
   auto median_of = [](std::vector<double> v) {
@@ -174,7 +196,13 @@ int puncture(int n, int threads, int reps, double tau_factor) {
               {"solve_ratio", s.value("multigrid_seconds", 0.0) /
                                   std::max(1e-300, poisson.summary["scalars"].value("multigrid_seconds", 0.0))},
               // The multigrid cycles alone (FMG and the cycles, no set-up or analysis), pair by pair.
-              {"median_pair_solve_ratio", median_of(pair_solve_ratios)}};
+              {"median_pair_solve_ratio", median_of(pair_solve_ratios)},
+              // One V-cycle on the finest level after the FMG start (with its residual check), pair by
+              // pair: the eight equations' cost per cycle, apart from how many cycles each needs.
+              {"cycle_seconds", eight.cycle_seconds},
+              {"poisson_cycles", poisson.summary["scalars"].value("multigrid_cycles", 0.0)},
+              {"poisson_cycle_seconds", poisson.cycle_seconds},
+              {"median_pair_cycle_ratio", median_of(pair_cycle_ratios)}};
   std::cout << out.dump() << std::endl;
   return 0;
 }
