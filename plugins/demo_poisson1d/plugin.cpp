@@ -1,4 +1,4 @@
-// The quickstart's example plugin: a 1-D Poisson problem relaxed in the core's loop until its
+// The example plugin (parfiles/demo_poisson1d.yaml): a 1-D Poisson problem relaxed in the core's loop until its
 // residual falls below a tolerance, then compared with the exact solution.
 #include <fmt/format.h>
 
@@ -73,7 +73,7 @@ void declare(core::PluginBuilder& b) {
 
 extern "C" BHNSID_EXPORT const BhnsidPluginInfo* bhnsid_plugin_info() {
   static const BhnsidPluginInfo info{BHNSID_ABI_VERSION, "demo_poisson1d", "1.0",
-                                     "example: 1-D Poisson problem relaxed in the outer loop (quickstart)",
+                                     "example: 1-D Poisson problem relaxed in the outer loop",
                                      &bhnsid::demo_poisson1d::declare};
   return &info;
 }

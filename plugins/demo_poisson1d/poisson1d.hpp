@@ -1,5 +1,5 @@
 #pragma once
-// The quickstart's example problem: -u'' = pi^2 sin(pi x) on [0, 1], u(0) = u(1) = 0, whose exact
+// The example plugin's problem: -u'' = pi^2 sin(pi x) on [0, 1], u(0) = u(1) = 0, whose exact
 // solution is u = sin(pi x). Second-order centred differences, relaxed by red-black SOR.
 #include <string>
 #include <vector>

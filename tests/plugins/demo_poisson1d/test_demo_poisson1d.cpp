@@ -1,4 +1,4 @@
-// demo_poisson1d through the real executable: convergence order, the quickstart, the failure path
+// demo_poisson1d through the real executable: convergence order, its example parameter file, the failure path
 // and reproduction from a run's params.yaml.
 #include <catch2/catch.hpp>
 
@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path quickstart() { return source_dir() / "parfiles" / "quickstart.yaml"; }
+fs::path example() { return source_dir() / "parfiles" / "demo_poisson1d.yaml"; }
 
 json summary(const fs::path& run) { return json::parse(read_file(run / "summary.json")); }
 
@@ -37,7 +37,7 @@ TEST_CASE("plugins.demo_poisson1d.second_order_convergence", "[plugins][demo_poi
   for (const int points : {33, 65, 129}) {
     const fs::path out = dir.path() / ("points" + std::to_string(points));
     const ProcessResult r =
-        run_bhnsid({"run", quickstart().string(), "--output", out.string(), "--set",
+        run_bhnsid({"run", example().string(), "--output", out.string(), "--set",
                     "demo_poisson1d.points=" + std::to_string(points), "--set", "demo_poisson1d.tolerance=1e-11",
                     "--set", "run.max_iterations=1000"});
     INFO("points " << points << "\n" << r.err);
@@ -54,12 +54,12 @@ TEST_CASE("plugins.demo_poisson1d.second_order_convergence", "[plugins][demo_poi
   CHECK(ratio_fine == Approx(4.0).margin(0.4));
 }
 
-TEST_CASE("plugins.demo_poisson1d.quickstart_runs", "[plugins][demo_poisson1d]") {
-  // parfiles/quickstart.yaml runs unchanged to status "converged" with exit 0 and leaves the complete
+TEST_CASE("plugins.demo_poisson1d.example_parfile_runs", "[plugins][demo_poisson1d]") {
+  // parfiles/demo_poisson1d.yaml runs unchanged to status "converged" with exit 0 and leaves the complete
   // run directory: params.yaml, log.txt, timers.tsv, history.tsv, summary.json and solution.tsv.
   TempDir dir;
-  const fs::path out = dir.path() / "quickstart";
-  const ProcessResult r = run_bhnsid({"run", quickstart().string(), "--output", out.string()});
+  const fs::path out = dir.path() / "demo_poisson1d";
+  const ProcessResult r = run_bhnsid({"run", example().string(), "--output", out.string()});
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   const json s = summary(out);
@@ -81,7 +81,7 @@ TEST_CASE("plugins.demo_poisson1d.iteration_limit_fails_but_keeps_last_state", "
   TempDir dir;
   const fs::path out = dir.path() / "limited";
   const ProcessResult r =
-      run_bhnsid({"run", quickstart().string(), "--output", out.string(), "--set", "run.max_iterations=2"});
+      run_bhnsid({"run", example().string(), "--output", out.string(), "--set", "run.max_iterations=2"});
   INFO(r.err);
   CHECK(r.exit_code == 1);
   const json s = summary(out);
@@ -97,7 +97,7 @@ TEST_CASE("plugins.demo_poisson1d.params_yaml_reproduces_the_run", "[plugins][de
   // Running the resolved params.yaml of a run gives bit-for-bit the same error_max and solution.tsv.
   TempDir dir;
   const fs::path first = dir.path() / "first", second = dir.path() / "second";
-  const ProcessResult r1 = run_bhnsid({"run", quickstart().string(), "--output", first.string(), "--set",
+  const ProcessResult r1 = run_bhnsid({"run", example().string(), "--output", first.string(), "--set",
                                        "demo_poisson1d.points=41", "--set", "demo_poisson1d.sweeps=7"});
   INFO(r1.err);
   REQUIRE(r1.exit_code == 0);
