@@ -170,10 +170,11 @@ int puncture(int n, int threads, int reps, double tau_factor) {
     if (b.seconds < poisson.seconds) poisson = b;
     pair_ratios.push_back(a.seconds / b.seconds);
     pair_solve_ratios.push_back(solve_seconds(a) / std::max(1e-300, solve_seconds(b)));
-    pair_cycle_ratios.push_back(a.cycle_seconds / std::max(1e-300, b.cycle_seconds));
+    if (a.cycle_seconds > 0 && b.cycle_seconds > 0) pair_cycle_ratios.push_back(a.cycle_seconds / b.cycle_seconds);
   }
   fs::remove_all(directory);
   auto median_of = [](std::vector<double> v) {
+    if (v.empty()) return 0.0;  // no cycle after the FMG start in a run: nothing to compare
     std::sort(v.begin(), v.end());
     const std::size_t m = v.size();
     return m % 2 ? v[m / 2] : 0.5 * (v[m / 2 - 1] + v[m / 2]);
