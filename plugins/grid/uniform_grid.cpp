@@ -138,9 +138,8 @@ int UniformGrid::add_mask(const std::string& name, const ExcisionRegion& region)
     // mirror image's, for the region stands for both) is visited.
     const double reach = region.half_size + tol;
     const auto& c = region.centre;
-    const auto ri = lv.indices_near(0, c[0] - reach, c[0] + reach), rj = lv.indices_near(1, c[1] - reach, c[1] + reach);
-    const double zlo = lv.z_symmetry ? std::fmin(c[2], -c[2]) : c[2], zhi = lv.z_symmetry ? std::fmax(c[2], -c[2]) : c[2];
-    const auto rk = lv.indices_near(2, zlo - reach, zhi + reach);
+    const auto [ri, rj, rk] =
+        lv.indices_near_box({c[0] - reach, c[1] - reach, c[2] - reach}, {c[0] + reach, c[1] + reach, c[2] + reach});
     for (int k = rk[0]; k <= rk[1]; ++k)
       for (int j = rj[0]; j <= rj[1]; ++j)
         for (int i = ri[0]; i <= ri[1]; ++i) {

@@ -135,12 +135,7 @@ RobinRows robin_stencils(const Level& lv, const std::array<double, 3>& centre, b
     for (std::size_t f = first_row(t), f1 = first_row(t + 1); f < f1; ++f) {
       const FaceRow& fr = face_rows[f];
       std::size_t r = points_before[f];
-      if (fr.whole) {
-        for (int i = 0; i < lv.nx; ++i) fn(r++, i, fr.j, fr.k);
-      } else {
-        fn(r++, 0, fr.j, fr.k);
-        fn(r, lv.nx - 1, fr.j, fr.k);
-      }
+      for_points_of_face_row(lv, fr.whole, [&](int i) { fn(r++, i, fr.j, fr.k); });
     }
   };
   std::vector<std::exception_ptr> failures(static_cast<std::size_t>(omp_get_max_threads()));

@@ -130,17 +130,21 @@ void for_face_rows(const Level& lv, Fn&& fn) {
   }
 }
 
+/// Calls fn(i) for the face points of row (j, k) as for_face_rows gives it, in order.
+template <class Fn>
+void for_points_of_face_row(const Level& lv, bool whole, Fn&& fn) {
+  if (whole) {
+    for (int i = 0; i < lv.nx; ++i) fn(i);
+  } else {
+    fn(0);
+    fn(lv.nx - 1);
+  }
+}
+
 /// Calls fn(i, j, k) for every stored point on an outer face of the cube.
 template <class Fn>
 void for_face_points(const Level& lv, Fn&& fn) {
-  for_face_rows(lv, [&](int j, int k, bool whole) {
-    if (whole) {
-      for (int i = 0; i < lv.nx; ++i) fn(i, j, k);
-    } else {
-      fn(0, j, k);
-      fn(lv.nx - 1, j, k);
-    }
-  });
+  for_face_rows(lv, [&](int j, int k, bool whole) { for_points_of_face_row(lv, whole, [&](int i) { fn(i, j, k); }); });
 }
 
 }  // namespace bhnsid::multigrid

@@ -46,10 +46,7 @@ int build_mask(const Level& lv, const Cube& cube, std::uint8_t* bytes, bool& nea
   std::memset(bytes, 0, lv.size);
   int count = 0;
   // Only the cube's bounding box (and its mirror image's under equatorial symmetry) can hold points.
-  const double zlo = lv.z_symmetry ? std::fmin(cube.lo[2], -cube.hi[2]) : cube.lo[2];
-  const double zhi = lv.z_symmetry ? std::fmax(cube.hi[2], -cube.lo[2]) : cube.hi[2];
-  const auto ri = lv.indices_near(0, cube.lo[0], cube.hi[0]), rj = lv.indices_near(1, cube.lo[1], cube.hi[1]);
-  const auto rk = lv.indices_near(2, zlo, zhi);
+  const auto [ri, rj, rk] = lv.indices_near_box(cube.lo, cube.hi);
   for (int k = rk[0]; k <= rk[1]; ++k)
     for (int j = rj[0]; j <= rj[1]; ++j)
       for (int i = ri[0]; i <= ri[1]; ++i) {

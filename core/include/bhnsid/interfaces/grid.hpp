@@ -62,6 +62,14 @@ struct Level {
     return {static_cast<int>(std::clamp(first, 0.0, static_cast<double>(extent))),
             static_cast<int>(std::clamp(last, -1.0, extent - 1.0))};
   }
+  /// indices_near along each axis for the box [lo, hi]; under equatorial symmetry the z range also
+  /// covers the box's mirror image, for a region there stands for itself and its image.
+  std::array<std::array<int, 2>, 3> indices_near_box(const std::array<double, 3>& lo,
+                                                     const std::array<double, 3>& hi) const {
+    const double zlo = z_symmetry ? std::fmin(lo[2], -hi[2]) : lo[2];
+    const double zhi = z_symmetry ? std::fmax(hi[2], -lo[2]) : hi[2];
+    return {indices_near(0, lo[0], hi[0]), indices_near(1, lo[1], hi[1]), indices_near(2, zlo, zhi)};
+  }
   /// Distance from p to the nearest stored point (the puncture's 1/r needs it off the points).
   double distance_to_nearest_point(const std::array<double, 3>& p) const {
     const int extent[3] = {nx, ny, nz};
