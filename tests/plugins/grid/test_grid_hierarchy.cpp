@@ -219,4 +219,15 @@ TEST_CASE("plugins.grid.level_indices_near_covers_an_interval", "[plugins][grid]
     CHECK(all[0] == 0);
     CHECK(all[1] == extent - 1);
   }
+  // indices_near_box: under equatorial symmetry a box below z = 0 stands for its mirror image
+  // above, whose stored points its z range must cover; without symmetry it covers no stored point.
+  const auto box = lv.indices_near_box({-0.3, 0.2, -1.1}, {0.4, 0.9, -0.6});
+  CHECK(box[0] == lv.indices_near(0, -0.3, 0.4));
+  CHECK(box[1] == lv.indices_near(1, 0.2, 0.9));
+  int z_missed = 0;
+  for (int k = 0; k < lv.nz; ++k) z_missed += lv.z(k) >= 0.6 && lv.z(k) <= 1.1 && (k < box[2][0] || k > box[2][1]);
+  CHECK(z_missed == 0);
+  const Level full = test::make_level(8, 0.5, false);
+  const auto plain = full.indices_near_box({-0.3, 0.2, -1.1}, {0.4, 0.9, -0.6});
+  CHECK(full.z(plain[2][1]) < 0.6);  // one index of slack above -0.6, far from the image
 }
