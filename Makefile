@@ -7,7 +7,7 @@ FUZZ_SECONDS ?= 30
 
 CMAKE_FLAGS = -G Ninja -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps build run test test-asan fuzz clean
+.PHONY: all deps build run test test-asan fuzz fuzz-check clean
 
 all: build
 
@@ -40,8 +40,15 @@ $(BUILD_FUZZ)/build.ninja: | deps
 fuzz: deps $(BUILD_FUZZ)/build.ninja
 	cmake --build $(BUILD_FUZZ) -j $(JOBS) --target fuzz_parfile
 	mkdir -p $(BUILD_FUZZ)/corpus
-	$(BUILD_FUZZ)/bin/fuzz_parfile -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 \
-		$(BUILD_FUZZ)/corpus tests/fuzz/corpus
+	ASAN_OPTIONS=detect_leaks=1 $(BUILD_FUZZ)/bin/fuzz_parfile -max_total_time=$(FUZZ_SECONDS) -timeout=1 \
+		-rss_limit_mb=2048 $(BUILD_FUZZ)/corpus tests/fuzz/corpus
+
+# CI: the fuzz target must keep building with clang, replay the kept corpus and survive a short run.
+fuzz-check: deps $(BUILD_FUZZ)/build.ninja
+	cmake --build $(BUILD_FUZZ) -j $(JOBS) --target fuzz_parfile
+	mkdir -p $(BUILD_FUZZ)/corpus
+	ASAN_OPTIONS=detect_leaks=1 $(BUILD_FUZZ)/bin/fuzz_parfile -max_total_time=$(FUZZ_SECONDS) -timeout=1 \
+		-rss_limit_mb=2048 $(BUILD_FUZZ)/corpus tests/fuzz/corpus
 
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD_FUZZ)

@@ -39,6 +39,7 @@ int cmd_run(const std::string& parfile, const CommonOptions& common, const std::
   options.run_directory = output.empty() ? fs::path("runs") / fs::path(parfile).stem() : fs::path(output);
   options.force = force;
   options.command_line = common.command_line;
+  options.protect.push_back(fs::path(parfile));
   const RunResult result = run(config, options);
   return result.exit_code;
 }
@@ -46,12 +47,17 @@ int cmd_run(const std::string& parfile, const CommonOptions& common, const std::
 int cmd_check(const std::string& parfile, const CommonOptions& common) {
   PluginLoader loader = make_loader(common);
   const Configuration config = configure(parfile, common.overrides, loader);
-  check_parameters(config);
+  const MemoryEstimate memory = check_parameters(config);
   std::size_t entries = 0, params = 0;
   for (const auto& [bin, list] : config.schedule) entries += list.size();
   for (const auto& [name, section] : config.params) params += section.values().size();
+  const MemoryLimit limit = available_memory();
   fmt::print("{}: OK ({} plugins, {} parameters, {} scheduled entries)\n", parfile, config.plugins.size(), params,
              entries);
+  fmt::print("memory: estimated {} of {} available ({})\n", format_bytes(memory.total()), format_bytes(limit.bytes),
+             limit.source);
+  for (const auto& item : memory.items())
+    fmt::print("  {:<18} {:>10}  {}\n", item.plugin, format_bytes(item.bytes), item.what);
   return exit_ok;
 }
 

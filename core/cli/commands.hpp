@@ -17,6 +17,9 @@ int cmd_schedule(const std::string& parfile, const CommonOptions& common);
 int cmd_params(const std::vector<std::string>& plugins, bool yaml, const CommonOptions& common);
 int cmd_plugins(const CommonOptions& common);
 
+/// Most resolutions of one validate series: the finest has 8^(levels - 1) times the points of the first.
+inline constexpr int max_validate_levels = 8;
+
 struct ValidateOptions {
   int levels = 3;
   double threshold = 1.8;

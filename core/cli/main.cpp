@@ -3,11 +3,15 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <csignal>
+#include <cstdio>
+#include <system_error>
 #include <iostream>
 
 #include "bhnsid/core/build_info.hpp"
 #include "bhnsid/core/errors.hpp"
+#include "bhnsid/core/interrupt.hpp"
 #include "commands.hpp"
 
 using namespace bhnsid;
@@ -21,11 +25,15 @@ std::string shell_quote(const std::string& arg) {
   for (char c : arg) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return out + "'";
 }
+// The one error line, best effort: a stderr that cannot be written (a full disk, a closed pipe)
+// must not turn a clean exit code into an abort.
+void complain(const std::string& line) { std::fputs(line.c_str(), stderr); }
 }  // namespace
 
 int main(int argc, char** argv) {
   // A full disk or a file-size limit must reach us as a write error, not kill the process.
   std::signal(SIGXFSZ, SIG_IGN);
+  core::install_interrupt_handlers();
 
   cli::CommonOptions common;
   for (int i = 0; i < argc; ++i) common.command_line += (i ? " " : "") + shell_quote(argv[i]);
@@ -94,20 +102,37 @@ int main(int argc, char** argv) {
   }
 
   try {
+    // An empty name would silently become the default directory.
+    if ((run->parsed() && run->count("--output") && output.empty()) ||
+        (validate->parsed() && validate->count("--output") && vopt.output.empty()))
+      throw core::InputError("--output: expected a directory name, got an empty string");
+    // A run's results are its files: a closed terminal pipe must not fail it. Every other
+    // command's result is what it prints, so a failed write to stdout is an error.
     if (run->parsed()) return cli::cmd_run(parfile, common, output, force);
-    if (check->parsed()) return cli::cmd_check(parfile, common);
-    if (schedule->parsed()) return cli::cmd_schedule(parfile, common);
-    if (params->parsed()) return cli::cmd_params(plugin_names, yaml, common);
-    if (plugins->parsed()) return cli::cmd_plugins(common);
     if (validate->parsed()) return cli::cmd_validate(parfile, common, vopt);
-  } catch (const core::InputError& e) {
-    fmt::print(stderr, "bhnsid: error: {}\n", e.what());
+    int code = core::exit_internal;
+    if (check->parsed()) code = cli::cmd_check(parfile, common);
+    if (schedule->parsed()) code = cli::cmd_schedule(parfile, common);
+    if (params->parsed()) code = cli::cmd_params(plugin_names, yaml, common);
+    if (plugins->parsed()) code = cli::cmd_plugins(common);
+    if (std::fflush(stdout) != 0 || std::ferror(stdout))
+      throw std::system_error(errno, std::generic_category(), "standard output");
+    return code;
+  } catch (const std::system_error& e) {
+    // fmt::print reports a failed write this way (a full disk, a closed pipe).
+    complain(fmt::format("bhnsid: error: cannot write the output: {}\n", e.what()));
     return core::exit_input;
+  } catch (const core::InputError& e) {
+    complain(fmt::format("bhnsid: error: {}\n", e.what()));
+    return core::exit_input;
+  } catch (const core::Interrupted& e) {
+    complain(fmt::format("bhnsid: {}\n", e.what()));
+    return 128 + core::interrupt_signal();
   } catch (const core::RunFailure& e) {
-    fmt::print(stderr, "bhnsid: run failed: {}\n", e.what());
+    complain(fmt::format("bhnsid: run failed: {}\n", e.what()));
     return core::exit_run_failed;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "bhnsid: internal error: {}\n", e.what());
+    complain(fmt::format("bhnsid: internal error: {}\n", e.what()));
     return core::exit_internal;
   }
   return core::exit_internal;

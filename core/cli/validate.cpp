@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <spawn.h>
 #include <sys/wait.h>
-#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <chrono>
@@ -15,11 +14,16 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <signal.h>
 #include <sstream>
 
 #include "bhnsid/core/atomic_file.hpp"
 #include "bhnsid/core/configuration.hpp"
 #include "bhnsid/core/errors.hpp"
+#include "bhnsid/core/interrupt.hpp"
+#include "bhnsid/core/run.hpp"
+#include "bhnsid/core/run_directory.hpp"
 #include "commands.hpp"
 
 extern char** environ;
@@ -64,9 +68,27 @@ int spawn(const std::vector<std::string>& args, const fs::path& log) {
   const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) throw RunFailure(fmt::format("validate: cannot start {}: {}", args[0], std::strerror(rc)));
+  // A stopping signal sent to validate alone (kill PID) is passed on, so that the level run stops at
+  // its safe point and keeps its state; from a terminal the child has it already.
   int status = 0;
-  waitpid(pid, &status, 0);
+  bool forwarded = false;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) throw RunFailure(fmt::format("validate: waiting for {}: {}", args[0], std::strerror(errno)));
+    if (!forwarded && interrupt_signal() != 0) {
+      ::kill(pid, interrupt_signal());
+      forwarded = true;
+    }
+  }
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// Progress and the table go to the terminal best effort: a closed pipe must not end the series,
+// whose results are in validate.json.
+template <class... Args>
+void say(fmt::format_string<Args...> format, Args&&... args) {
+  const std::string text = fmt::format(format, std::forward<Args>(args)...);
+  std::fwrite(text.data(), 1, text.size(), stdout);
+  std::fflush(stdout);
 }
 
 void read_axis(Level& lv) {
@@ -100,69 +122,35 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
   for (const std::string& e : opt.only)
     if (e != "hamiltonian" && e != "momentum" && e != "lapse" && e != "shift")
       throw InputError(fmt::format("validate: --only {}: expected hamiltonian, momentum, lapse or shift", e));
+  // Each level doubles n: bounded so that n << (levels - 1) cannot overflow, and far beyond what
+  // any machine holds (the finest level is checked below, memory included, before any run).
+  if (opt.levels > max_validate_levels)
+    throw InputError(fmt::format("validate: --levels {}: expected at most {} (each level has 8 times the points of the "
+                                 "one before)",
+                                 opt.levels, max_validate_levels));
   PluginLoader loader(plugin_search_path(common.plugin_dirs));
-  // Input errors surface here, once, before any run. `ire.*` overrides are checked here only when
-  // the file lists ire; otherwise validate adds the plugin and the first run checks them.
-  std::vector<std::string> checked;
-  for (const std::string& o : common.overrides)
-    if (o.rfind("ire.", 0) != 0) checked.push_back(o);
-  Configuration config = configure(parfile, checked, loader);
-  if (config.params.count("ire")) config = configure(parfile, common.overrides, loader);
+  // The file is read once (it may be a pipe), with ire added when it is not listed; input errors,
+  // ire.* overrides included, surface here before any run.
+  ParFile file = load_parfile(parfile);
+  if (std::find(file.plugins.begin(), file.plugins.end(), "ire") == file.plugins.end()) {
+    file.plugins.push_back("ire");
+    file.plugin_pos.push_back(TextPos{parfile, 0, 0});
+  }
+  const Configuration config = configure(file, common.overrides, loader);
+  check_parameters(config);
   if (!config.params.count("grid"))
     throw InputError(fmt::format("{}: validate needs the grid plugin (grid.n, grid.dx)", parfile));
   const int n = static_cast<int>(config.params.at("grid").integer("n"));
   const double dx = config.params.at("grid").real("dx");
-  int exclude = 2, surface = 2;
-  if (config.params.count("ire")) {
-    exclude = static_cast<int>(config.params.at("ire").integer("exclude_cells"));
-    surface = static_cast<int>(config.params.at("ire").integer("surface_cells"));
-  } else {
-    // ire is added below; its region widths may still come from --set (in points of the coarsest run).
-    for (const std::string& o : common.overrides)
-      for (auto [key, target] : {std::pair<const char*, int*>{"ire.exclude_cells=", &exclude}, {"ire.surface_cells=", &surface}})
-        if (o.rfind(key, 0) == 0) {
-          const std::string value = o.substr(std::strlen(key));
-          std::size_t used = 0;
-          int v = -1;
-          try {
-            v = std::stoi(value, &used);
-          } catch (const std::exception&) {
-            used = 0;
-          }
-          if (used != value.size() || v < 0)
-            throw InputError(fmt::format("--set {}: expected an integer >= 0 for {}", o, std::string(key, std::strlen(key) - 1)));
-          *target = v;
-        }
-  }
+  const int exclude = static_cast<int>(config.params.at("ire").integer("exclude_cells"));
+  const int surface = static_cast<int>(config.params.at("ire").integer("surface_cells"));
   const fs::path dir = opt.output.empty() ? fs::path("runs") / (fs::path(parfile).stem().string() + "_validate") : fs::path(opt.output);
-  if (fs::exists(dir)) {
-    if (!opt.force)
-      throw InputError(fmt::format("validate: {} exists; choose another with --output DIR or replace it with --force", dir.string()));
-    if (!fs::exists(dir / "parfile.yaml"))
-      throw InputError(fmt::format("validate: {} does not look like a validate directory (no parfile.yaml); not replacing it", dir.string()));
-    fs::remove_all(dir);
-  }
-  fs::create_directories(dir);
-
-  // The parameter file with the ire plugin added when it is not listed.
-  YAML::Node root = YAML::LoadFile(parfile);
-  bool has_ire = false;
-  for (const auto& p : root["plugins"]) has_ire = has_ire || p.as<std::string>() == "ire";
-  if (!has_ire) root["plugins"].push_back("ire");
-  YAML::Emitter emitter;
-  emitter << root;
-  write_file_atomic(dir / "parfile.yaml", std::string("# ") + parfile + " for bhnsid validate (ire added)\n" + emitter.c_str() + "\n");
-
   const std::string self = fs::read_symlink("/proc/self/exe").string();
-  std::vector<Level> levels(static_cast<std::size_t>(opt.levels));
-  for (int q = 0; q < opt.levels; ++q) {
-    Level& lv = levels[static_cast<std::size_t>(q)];
-    lv.n = n << q;
-    lv.dx = dx / (1 << q);
-    lv.dir = dir / fmt::format("level_{}", q);
+  const auto level_args = [&](int q, const std::string& command, const fs::path& parfile_copy) {
     // The excluded regions keep their size in length, not in points, as dx shrinks.
-    std::vector<std::string> args{self, "run", (dir / "parfile.yaml").string(), "--output", lv.dir.string(),
-                                  "--set", fmt::format("grid.n={}", lv.n), "--set", fmt::format("grid.dx={:.17g}", lv.dx),
+    std::vector<std::string> args{self, command, parfile_copy.string(),
+                                  "--set", fmt::format("grid.n={}", static_cast<std::int64_t>(n) << q),
+                                  "--set", fmt::format("grid.dx={:.17g}", dx / (1 << q)),
                                   "--set", fmt::format("ire.exclude_cells={}", exclude << q),
                                   "--set", fmt::format("ire.surface_cells={}", surface << q),
                                   "--set", fmt::format("ire.stride={}", 1 << q)};
@@ -171,11 +159,45 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
           o.rfind("ire.surface_cells=", 0) != 0 && o.rfind("ire.stride=", 0) != 0)
         args.insert(args.end(), {"--set", o});
     for (const std::string& p : common.plugin_dirs) args.insert(args.end(), {"--plugin-path", p});
-    fmt::print("validate: level {} of {}: n = {}, dx = {:.9g} ...\n", q + 1, opt.levels, lv.n, lv.dx);
-    std::fflush(stdout);
+    return args;
+  };
+
+  RunDirectory directory(dir, opt.force, "validate", {fs::path(parfile)});
+  directory.record("parfile.yaml");
+  write_file_atomic(dir / "parfile.yaml",
+                    resolved_parfile_yaml(config, "# The parameter file of bhnsid validate (ire added), resolved\n"));
+  // The finest level is the largest: if it cannot run (grid.n beyond its range, memory), say so now,
+  // in its own words, not after the coarser levels have run.
+  {
+    directory.record("finest_check.out");
+    const fs::path out = dir / "finest_check.out";
+    if (spawn(level_args(opt.levels - 1, "check", dir / "parfile.yaml"), out) != 0) {
+      std::string why = read_text(out);
+      while (!why.empty() && why.back() == '\n') why.pop_back();
+      const std::string prefix = "bhnsid: error: ";
+      if (why.rfind(prefix, 0) == 0) why = why.substr(prefix.size());
+      directory.abandon();  // bad input leaves no directory behind
+      throw InputError(fmt::format("validate: the finest level (n = {}) cannot run: {}", static_cast<std::int64_t>(n) << (opt.levels - 1), why));
+    }
+  }
+
+  std::vector<Level> levels(static_cast<std::size_t>(opt.levels));
+  for (int q = 0; q < opt.levels; ++q) {
+    Level& lv = levels[static_cast<std::size_t>(q)];
+    lv.n = n << q;
+    lv.dx = dx / (1 << q);
+    lv.dir = dir / fmt::format("level_{}", q);
+    std::vector<std::string> args = level_args(q, "run", dir / "parfile.yaml");
+    args.insert(args.begin() + 3, {"--output", lv.dir.string()});
+    directory.record(fmt::format("level_{}", q));
+    directory.record(fmt::format("level_{}.out", q));
+    say("validate: level {} of {}: n = {}, dx = {:.9g} ...\n", q + 1, opt.levels, lv.n, lv.dx);
     const auto t0 = std::chrono::steady_clock::now();
     const int rc = spawn(args, dir / fmt::format("level_{}.out", q));
     lv.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (interrupt_signal() != 0)
+      throw Interrupted(fmt::format("validate: interrupted by {} during the run at n = {}; its state is in {}",
+                                    signal_name(interrupt_signal()), lv.n, lv.dir.string()));
     if (rc != 0)
       throw RunFailure(fmt::format("validate: the run at n = {}, dx = {:.9g} failed (exit {}); see {} and {}", lv.n, lv.dx, rc,
                                    (dir / fmt::format("level_{}.out", q)).string(), (lv.dir / "log.txt").string()));
@@ -183,7 +205,7 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
     for (const auto& [key, value] : summary["scalars"].items())
       if (value.is_number()) lv.scalars[key] = value.get<double>();
     read_axis(lv);
-    fmt::print("validate:   done in {:.1f} s\n", lv.seconds);
+    say("validate:   done in {:.1f} s\n", lv.seconds);
   }
 
   // Orders from the norms, per equation; the judgement uses the finest pair's L2 order.
@@ -194,7 +216,7 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
   for (const Level& lv : levels)
     out["levels"].push_back({{"n", lv.n}, {"dx", lv.dx}, {"run_directory", lv.dir.string()}, {"seconds", lv.seconds}});
   bool passed = true;
-  fmt::print("\n{:<12} {:>10} {:>10} {:>10} {:>8} {:>8} {:>8}  {}\n", "equation", "L2 (dx)", "L2 (dx/2)", "L2 (dx/4)",
+  say("\n{:<12} {:>10} {:>10} {:>10} {:>8} {:>8} {:>8}  {}\n", "equation", "L2 (dx)", "L2 (dx/2)", "L2 (dx/4)",
              "order", "order", "max ord", "verdict");
   for (const std::string& e : equations) {
     if (!levels[0].scalars.count("ire_" + e + "_l2")) continue;
@@ -239,9 +261,9 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
     out["equations"][e] = eq;
     std::string l2s;
     for (std::size_t q = 0; q < 3; ++q) l2s += q < l2.size() ? fmt::format(" {:>10.3e}", l2[q]) : fmt::format(" {:>10}", "");
-    fmt::print("{:<12}{} {:>8.2f} {:>8.2f} {:>8.2f}  {}\n", e, l2s, o2.front(), o2.back(), omax.back(), verdict);
+    say("{:<12}{} {:>8.2f} {:>8.2f} {:>8.2f}  {}\n", e, l2s, o2.front(), o2.back(), omax.back(), verdict);
     if (!sl2.empty() && !exact)
-      fmt::print("{:<12} surface band: L2 {:.3e} -> {:.3e}, order {:.2f}\n", "", sl2.front(), sl2.back(), osurf.back());
+      say("{:<12} surface band: L2 {:.3e} -> {:.3e}, order {:.2f}\n", "", sl2.front(), sl2.back(), osurf.back());
   }
   // Pointwise: the residuals at the coarsest run's axis points (every run evaluates there: ire.stride),
   // times 4^q at level q.
@@ -267,15 +289,23 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
   out["axis_rescaled"] = axis;
   out["axis_region"] = coarse.regions;
   out["passed"] = passed;
+  directory.record("validate.json");
   write_file_atomic(dir / "validate.json", out.dump(1) + "\n");
-  fmt::print("\nvalidate: {} ({} levels, threshold {:.2f}); validate.json in {}\n", passed ? "PASSED" : "FAILED",
+  say("\nvalidate: {} ({} levels, threshold {:.2f}); validate.json in {}\n", passed ? "PASSED" : "FAILED",
              opt.levels, opt.threshold, dir.string());
   if (opt.plots) {
     // Debian's interpreter, where matplotlib is installed (scripts/install-deps.sh), before any other on PATH.
     const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
     const std::string cmd = fmt::format("{} '{}' '{}' '{}'", python, BHNSID_PLOT_SCRIPT, (dir / "validate.json").string(), dir.string());
-    if (std::system(cmd.c_str()) != 0)
-      fmt::print(stderr, "validate: warning: the plots were not made ({}); the table and validate.json are complete\n", cmd);
+    std::set<std::string> before;
+    for (const auto& e : fs::directory_iterator(dir)) before.insert(e.path().filename().string());
+    const int rc = std::system(cmd.c_str());
+    // What the plot script wrote is ours, so that --force may replace it.
+    for (const auto& e : fs::directory_iterator(dir))
+      if (!before.count(e.path().filename().string())) directory.record(e.path().filename().string());
+    if (rc != 0)
+      std::fprintf(stderr, "validate: warning: the plots were not made (%s); the table and validate.json are complete\n",
+                   cmd.c_str());
   }
   return passed ? exit_ok : exit_run_failed;
 }

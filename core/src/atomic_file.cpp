@@ -71,34 +71,4 @@ void commit_file(const fs::path& from, const fs::path& to) {
   fsync_directory(to.parent_path());
 }
 
-void prepare_run_directory(const fs::path& dir, bool force) {
-  std::error_code ec;
-  if (fs::exists(dir, ec)) {
-    if (!force)
-      throw InputError(fmt::format("{}: the run directory exists; choose another with --output DIR or replace it with "
-                                   "--force",
-                                   dir.string()));
-    const bool looks_like_run = fs::is_directory(dir, ec) &&
-                                (fs::exists(dir / "params.yaml", ec) || fs::exists(dir / "summary.json", ec) ||
-                                 fs::exists(dir / "log.txt.partial", ec) || fs::is_empty(dir, ec));
-    if (!looks_like_run)
-      throw InputError(fmt::format("{}: exists and is not a bhnsid run directory; --force only replaces run "
-                                   "directories",
-                                   dir.string()));
-    fs::remove_all(dir, ec);
-    if (ec) throw InputError(fmt::format("{}: cannot remove the old run directory: {}", dir.string(), ec.message()));
-  }
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError(fmt::format("{}: cannot create the run directory: {}", dir.string(), ec.message()));
-  // Root ignores permission bits, so probe by writing rather than by inspecting modes.
-  std::string probe = (dir / ".write-probe.XXXXXX").string();
-  const int fd = ::mkstemp(probe.data());
-  if (fd < 0) fail(dir, "write into the run directory", errno);
-  const bool wrote = ::write(fd, "x", 1) == 1;
-  const int error = errno;
-  ::close(fd);
-  ::unlink(probe.c_str());
-  if (!wrote) fail(dir, "write into the run directory", error);
-}
-
 }  // namespace bhnsid::core

@@ -47,6 +47,7 @@ int Context::iteration() const { return state_->iteration; }
 const std::filesystem::path& Context::run_directory() const { return state_->run_dir; }
 
 void Context::write_output(const std::string& relative_name, const std::string& contents) const {
+  if (state_->directory) state_->directory->record(std::filesystem::path(relative_name).begin()->string());
   write_file_atomic(state_->run_dir / relative_name, contents);
 }
 

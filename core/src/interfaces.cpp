@@ -9,6 +9,7 @@
 namespace bhnsid {
 
 Grid::~Grid() = default;
+GridLayout::~GridLayout() = default;
 EllipticEquation::~EllipticEquation() = default;
 Eos::~Eos() = default;
 TovFamily::~TovFamily() = default;

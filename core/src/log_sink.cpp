@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <unistd.h>
 
 #include "bhnsid/core/atomic_file.hpp"
 #include "bhnsid/core/errors.hpp"
@@ -40,6 +41,13 @@ void LogSink::finish(const std::filesystem::path& final_path) {
   if (failed_ || close_failed)
     throw InputError(fmt::format("{}: writing the log failed (disk full?); the partial log is kept", partial_.string()));
   commit_file(partial_, final_path);
+}
+
+void LogSink::abandon() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (file_) std::fclose(file_);
+  file_ = nullptr;
+  if (!partial_.empty()) ::unlink(partial_.c_str());
 }
 
 void Log::info(const std::string& message) const {

@@ -19,6 +19,8 @@ class LogSink {
   void write(bool warning, const std::string& prefix, const std::string& message);
   /// Closes the file and renames it to `final_path`; InputError if any write to it failed.
   void finish(const std::filesystem::path& final_path);
+  /// Closes and removes the partial log (the run never started).
+  void abandon();
 
  private:
   std::mutex mutex_;

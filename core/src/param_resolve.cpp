@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cfloat>
 #include <cmath>
 #include <cstdlib>
 
@@ -34,15 +35,49 @@ bool is_non_finite_word(std::string s) {
   return s == ".nan" || s == "nan" || s == ".inf" || s == "inf" || s == "infinity";
 }
 
+// Decimal notation only: [+-] digits [. digits] [e|E [+-] digits], with digits on at least one
+// side of the point. strtod alone would also take hexadecimal (0x10, 0x1p-3) and leading spaces.
+bool is_decimal_real(const std::string& s) {
+  std::size_t i = 0;
+  const auto digits = [&] {
+    const std::size_t start = i;
+    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i;
+    return i - start;
+  };
+  if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+  std::size_t mantissa = digits();
+  if (i < s.size() && s[i] == '.') {
+    ++i;
+    mantissa += digits();
+  }
+  if (mantissa == 0) return false;
+  if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+    ++i;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+    if (digits() == 0) return false;
+  }
+  return i == s.size();
+}
+
+// True when the written mantissa has a non-zero digit, i.e. the value the user meant is not 0.
+bool names_non_zero(const std::string& s) {
+  for (char c : s) {
+    if (c == 'e' || c == 'E') break;
+    if (c >= '1' && c <= '9') return true;
+  }
+  return false;
+}
+
 double to_real(const ParamSpec& spec, const YamlNode& node, const std::string& where) {
   if (node.kind != YamlNode::Kind::scalar || !node.plain) bad_value(spec, node, where, "a real number");
   if (is_non_finite_word(node.scalar)) bad_value(spec, node, where, "a finite real (NaN and inf are not allowed)");
-  const char* begin = node.scalar.c_str();
-  char* end = nullptr;
-  const double x = std::strtod(begin, &end);
-  if (end == begin || *end != '\0' || std::isspace(static_cast<unsigned char>(*begin)))
-    bad_value(spec, node, where, "a real number");
+  if (!is_decimal_real(node.scalar)) bad_value(spec, node, where, "a real number in decimal notation, e.g. 0.25 or 1e-3");
+  const double x = std::strtod(node.scalar.c_str(), nullptr);
   if (!std::isfinite(x)) bad_value(spec, node, where, "a finite real (this overflows a double)");
+  // A value below the smallest normal double would silently become 0 or lose its digits, and 0
+  // can mean something else entirely (e.g. "no star").
+  if (names_non_zero(node.scalar) && (x == 0 || std::fabs(x) < DBL_MIN))
+    bad_value(spec, node, where, "a real whose magnitude is at least 2.2e-308 (this underflows a double)");
   return x;
 }
 

@@ -82,7 +82,7 @@ void apply_override(ParFile& file, const std::string& assignment) {
       v = std::move(value);
       return;
     }
-  it->entries.emplace_back(std::move(key_node), std::move(value));
+  it->entries.push_back(YamlEntry{std::move(key_node), std::move(value)});
 }
 
 const PluginDecl& core_declaration() {

@@ -91,6 +91,8 @@ ScheduleHandle PluginBuilder::check(std::string name, CheckFn fn) {
   return ScheduleHandle(decl_, decl_.schedule.size() - 1);
 }
 
+void PluginBuilder::memory(MemoryFn fn, MemoryStage stage) { decl_.memory.push_back(MemoryEstimator{stage, std::move(fn)}); }
+
 namespace {
 bool is_identifier(const std::string& s) {
   if (s.empty() || !std::islower(static_cast<unsigned char>(s[0]))) return false;
@@ -141,6 +143,8 @@ void validate_declaration(const PluginDecl& decl) {
     if (!seen.insert(e.name).second) fail(fmt::format("schedule entry '{}' twice", e.name));
     if (e.bin == Bin::check ? !e.check : !e.fn) fail(fmt::format("schedule entry '{}' without a function", e.name));
   }
+  for (const auto& m : decl.memory)
+    if (!m.fn) fail("a memory estimate without a function");
   for (const auto& c : decl.implements)
     if (!is_capability_name(c)) fail(fmt::format("a capability named '{}'", c));
   for (const auto& c : decl.requires_caps)

@@ -2,7 +2,11 @@
 
 #include <dlfcn.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <cstdlib>
 
@@ -73,6 +77,14 @@ std::shared_ptr<const LoadedPlugin> PluginLoader::load(const std::string& name) 
 
 std::shared_ptr<const LoadedPlugin> PluginLoader::load_file(const fs::path& file) {
   const std::string path = file.string();
+  // dlopen of a FIFO waits for a writer forever: only regular files (through any symlinks) are loaded.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0)
+    throw InputError(fmt::format("{}: cannot be loaded as a plugin: {}", path, std::strerror(errno)));
+  if (!S_ISREG(st.st_mode))
+    throw InputError(fmt::format("{}: is not a regular file (a FIFO, socket, device or directory); a plugin is a "
+                                 "shared library file",
+                                 path));
   // RTLD_LOCAL: plugins cannot see each other's symbols, so they can only meet through services.
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) {

@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <thread>
 #include <nlohmann/json.hpp>
 #ifdef _OPENMP
 #include <omp.h>
@@ -12,6 +14,8 @@
 #include "bhnsid/core/atomic_file.hpp"
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/errors.hpp"
+#include "bhnsid/core/interrupt.hpp"
+#include "bhnsid/core/run_directory.hpp"
 #include "run_state.hpp"
 
 namespace bhnsid::core {
@@ -32,14 +36,27 @@ class Executor {
     for (const auto* decl : state.config.decls) contexts_.emplace(decl->name, Context(state, *decl));
   }
 
-  bool run_bin(Bin bin) {
+  /// False when an entry failed or, with `interruptible`, a stopping signal arrived: the safe
+  /// points are between entries.
+  bool run_bin(Bin bin, bool interruptible = true) {
     auto it = state_.config.schedule.find(bin);
     if (it == state_.config.schedule.end()) return true;
     for (const auto* entry : it->second) {
+      if (interruptible && interrupted()) return false;
       if (!call(*entry, [&](Context& ctx) { entry->fn(ctx); })) return false;
     }
-    return true;
+    return !(interruptible && interrupted());
   }
+
+  /// Latches the first stopping signal, with where the run stood.
+  bool interrupted() {
+    if (signal_ == 0 && interrupt_signal() != 0) {
+      signal_ = interrupt_signal();
+      log_.warn("{} received: stopping at iteration {}; the last state is kept", signal_name(signal_), state_.iteration);
+    }
+    return signal_ != 0;
+  }
+  int signal() const { return signal_; }
 
   /// Returns false when a CHECK entry failed outright; `all_converged` and `detail` report the rest.
   bool run_checks(bool& all_converged, std::string& detail) {
@@ -48,6 +65,7 @@ class Executor {
     auto it = state_.config.schedule.find(Bin::check);
     if (it == state_.config.schedule.end()) return true;
     for (const auto* entry : it->second) {
+      if (interrupted()) return false;
       Convergence result;
       if (!call(*entry, [&](Context& ctx) { result = entry->check(ctx); })) return false;
       all_converged = all_converged && result.converged;
@@ -105,6 +123,7 @@ class Executor {
   std::vector<Timer> timers_;
   std::string failure_;
   int failure_code_ = 0;
+  int signal_ = 0;
 };
 
 bool has_loop(const Schedule& schedule) {
@@ -137,6 +156,7 @@ std::string summary_json(const RunState& state, const RunResult& result, const s
   nlohmann::ordered_json j;
   j["status"] = result.status;
   j["iterations"] = result.iterations;
+  j["memory_estimate_bytes"] = result.memory_estimate;
   if (!message.empty()) j["message"] = message;
   j["scalars"] = nlohmann::ordered_json::object();
   for (const auto& [name, value] : state.scalars) {
@@ -154,50 +174,106 @@ std::string summary_json(const RunState& state, const RunResult& result, const s
 
 }  // namespace
 
-void check_parameters(const Configuration& config) {
-  auto it = config.schedule.find(Bin::paramcheck);
-  if (it == config.schedule.end()) return;
-  RunState state(config);
-  for (const auto* entry : it->second) {
-    const PluginDecl* decl = nullptr;
-    for (const auto* d : config.decls)
-      if (d->name == entry->plugin) decl = d;
-    Context ctx(state, *decl);
-    // A parameter combination that cannot run is bad input, whoever finds it; the message
-    // names the file, and the plugin's message the key.
-    try {
-      entry->fn(ctx);
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("{}: {}", config.file.source, e.what()));
-    } catch (const RunFailure& e) {
-      throw InputError(fmt::format("{}: {}: {}", config.file.source, entry->full_name(), e.what()));
-    }
-  }
+namespace {
+
+// Oversubscribing the cores only slows every kernel down, and libgomp fails outright (a segfault
+// creating the thread pool) somewhere above a few thousand threads.
+void check_threads(const Configuration& config) {
+  const std::int64_t threads = config.params.at("run").integer("threads");
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const std::int64_t most = 4 * static_cast<std::int64_t>(cores);
+  if (threads > most)
+    throw InputError(fmt::format("{}: run.threads = {}: expected at most {} (4 x the {} cores of this machine); more "
+                                 "threads than cores only slow the solve down, and the OpenMP runtime cannot create "
+                                 "thousands",
+                                 config.file.source, threads, most, cores));
 }
+
+const PluginDecl& decl_of(const Configuration& config, const std::string& plugin) {
+  for (const auto* d : config.decls)
+    if (d->name == plugin) return *d;
+  throw std::logic_error("schedule entry of an unknown plugin " + plugin);
+}
+
+}  // namespace
+
+MemoryEstimate check_parameters(const Configuration& config) {
+  check_threads(config);
+  RunState state(config);
+  auto it = config.schedule.find(Bin::paramcheck);
+  if (it != config.schedule.end())
+    for (const auto* entry : it->second) {
+      Context ctx(state, decl_of(config, entry->plugin));
+      // A parameter combination that cannot run is bad input, whoever finds it; the message
+      // names the file, and the plugin's message the key.
+      try {
+        entry->fn(ctx);
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("{}: {}", config.file.source, e.what()));
+      } catch (const RunFailure& e) {
+        throw InputError(fmt::format("{}: {}: {}", config.file.source, entry->full_name(), e.what()));
+      }
+    }
+  MemoryEstimate estimate;
+  estimate.add("run", "process", "the executable, its libraries and thread stacks", process_base_bytes);
+  for (MemoryStage stage : {MemoryStage::own, MemoryStage::derived})
+    for (const auto* decl : config.decls)
+      for (const auto& m : decl->memory)
+        if (m.stage == stage) {
+          Context ctx(state, *decl);
+          try {
+            m.fn(ctx, estimate);
+          } catch (const InputError& e) {
+            throw InputError(fmt::format("{}: {}", config.file.source, e.what()));
+          }
+        }
+  const MemoryLimit limit = available_memory();
+  if (estimate.total() > limit.bytes)
+    throw InputError(fmt::format("{}: the run needs an estimated {}, more than the {} this process may use ({}); "
+                                 "the largest parts: {}. Lower the parameters named there",
+                                 config.file.source, format_bytes(estimate.total()), format_bytes(limit.bytes),
+                                 limit.source, estimate.largest(3)));
+  return estimate;
+}
+
+namespace {
+// The command line goes into a YAML comment: a newline or other control character in it (a
+// directory name can hold one) would end the comment and corrupt the file, so each is escaped.
+std::string comment_safe(const std::string& text) {
+  std::string out;
+  for (unsigned char c : text) out += c < 0x20 || c == 0x7f ? fmt::format("\\x{:02x}", c) : std::string(1, static_cast<char>(c));
+  return out;
+}
+}  // namespace
 
 RunResult run(const Configuration& config, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   // Cross-parameter checks before anything is written: bad input leaves no run directory.
-  check_parameters(config);
-  prepare_run_directory(options.run_directory, options.force);
+  const MemoryEstimate memory = check_parameters(config);
+  RunDirectory directory(options.run_directory, options.force, "run", options.protect);
   RunState state(config);
   state.run_dir = options.run_directory;
+  state.directory = &directory;
   const Provenance prov = provenance(options.command_line);
   try {
+    directory.record("log.txt.partial");
+    directory.record("log.txt");
     state.sink.open_file(state.run_dir / "log.txt.partial");
+    directory.record("params.yaml");
     write_file_atomic(state.run_dir / "params.yaml",
                       resolved_parfile_yaml(config, fmt::format("# Resolved parameters of the run started by:\n#   {}\n"
                                                                 "# Run this file to reproduce it.\n",
-                                                                options.command_line)));
+                                                                comment_safe(options.command_line))));
   } catch (const InputError&) {
     // Nothing has run yet: leave no half-made run directory behind.
-    std::error_code ec;
-    std::filesystem::remove_all(state.run_dir, ec);
+    state.sink.abandon();
+    directory.abandon();
     throw;
   }
   const Log log(&state.sink, "");
-  log.info("bhnsid {} ({}): {}", prov.version, prov.git_revision, options.command_line);
+  log.info("bhnsid {} ({}): {}", prov.version, prov.git_revision, comment_safe(options.command_line));
   log.info("run directory: {}", state.run_dir.string());
+  log.info("memory: estimated {} (largest: {})", format_bytes(memory.total()), memory.largest(2));
   log.info("schedule:\n{}", format_schedule(config.schedule));
   const ParamSection& run_params = config.params.at("run");
 #ifdef _OPENMP
@@ -238,18 +314,31 @@ RunResult run(const Configuration& config, const RunOptions& options) {
     ok = ok && (converged || !has_checks);
   }
   // Diagnostics of an unconverged state would mislead, so ANALYSIS needs success; OUTPUT keeps the
-  // last state of any run that got as far as the loop; TERMINATE always runs.
-  if (ok) ok = exec.run_bin(Bin::analysis);
-  if (reached_loop) exec.run_bin(Bin::output);
-  exec.run_bin(Bin::terminate);
+  // last state of any run that got as far as the loop, interrupted or not; TERMINATE always runs.
+  // None of these three stops for a signal: they are what makes an interrupted run worth keeping.
+  if (ok) ok = exec.run_bin(Bin::analysis, false);
+  if (reached_loop || exec.signal() != 0) exec.run_bin(Bin::output, false);
+  exec.run_bin(Bin::terminate, false);
 
-  result.exit_code = exec.failure().empty() ? exit_ok : exec.failure_code();
+  std::string message = exec.failure();
+  result.exit_code = message.empty() ? exit_ok : exec.failure_code();
   if (result.exit_code != exit_ok) result.status = "failed";
+  if (exec.signal() != 0 && message.empty()) {
+    result.status = "interrupted";
+    result.exit_code = 128 + exec.signal();
+    message = fmt::format("interrupted by {} at iteration {}; the fields are the last state reached", signal_name(exec.signal()),
+                          state.iteration);
+  }
+  result.memory_estimate = memory.total();
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   log.info("status: {} after {} iteration(s), {:.3f} s", result.status, result.iterations, total);
-  write_file_atomic(state.run_dir / "timers.tsv", timers_tsv(exec.timers(), total));
-  if (!state.history.empty()) write_file_atomic(state.run_dir / "history.tsv", history_tsv(state));
-  write_file_atomic(state.run_dir / "summary.json", summary_json(state, result, exec.failure(), prov));
+  const auto write = [&](const std::string& name, const std::string& text) {
+    directory.record(name);
+    write_file_atomic(state.run_dir / name, text);
+  };
+  write("timers.tsv", timers_tsv(exec.timers(), total));
+  if (!state.history.empty()) write("history.tsv", history_tsv(state));
+  write("summary.json", summary_json(state, result, message, prov));
   state.sink.finish(state.run_dir / "log.txt");
   return result;
 }

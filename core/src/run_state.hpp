@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bhnsid/core/configuration.hpp"
+#include "bhnsid/core/run_directory.hpp"
 #include "bhnsid/core/services.hpp"
 #include "log_sink.hpp"
 
@@ -18,6 +19,7 @@ struct RunState {
   LogSink sink;
   Services services;
   std::filesystem::path run_dir;
+  RunDirectory* directory = nullptr;  ///< records what the run writes; null for check and schedule
   int iteration = 0;
   bool in_loop = false;
   std::vector<std::pair<std::string, double>> scalars;  ///< summary.json order: first set, first listed

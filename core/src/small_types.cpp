@@ -14,6 +14,8 @@ InputError::InputError(const std::string& what) : std::runtime_error(what) {}
 InputError::~InputError() = default;
 RunFailure::RunFailure(const std::string& what) : std::runtime_error(what) {}
 RunFailure::~RunFailure() = default;
+Interrupted::Interrupted(const std::string& what) : std::runtime_error(what) {}
+Interrupted::~Interrupted() = default;
 
 Service::~Service() = default;
 

@@ -4,6 +4,7 @@
 
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/plugin.hpp"
+#include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "axis.hpp"
 #include "integrals.hpp"
@@ -19,6 +20,13 @@ void declare(core::PluginBuilder& b) {
   b.require("grid");
   b.require("equation.hamiltonian");
   b.implements("diagnostics");
+  b.memory([](const Context& ctx, core::MemoryEstimate& m) {
+    if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
+      // The energy densities integrated for the masses: two finest-level arrays.
+      m.add(ctx.plugin(), "densities", fmt::format("two finest-level arrays at {}", layout->describe()),
+            2 * layout->field_bytes(core::Storage::finest_only));
+    }
+  });
 
   b.schedule(Bin::analysis, "masses", [](Context& ctx) {
      const auto& grid = ctx.services().get<Grid>("grid");

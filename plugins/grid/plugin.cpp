@@ -20,6 +20,20 @@ struct State {
   std::shared_ptr<UniformGrid> grid;
 };
 
+class Layout : public GridLayout {
+ public:
+  Layout(std::vector<Level> levels, const HierarchySpec& spec) : levels_(std::move(levels)), spec_(spec) {}
+  const std::vector<Level>& levels() const override { return levels_; }
+  std::string describe() const override {
+    return fmt::format("grid.n = {} ({} levels{})", spec_.n, levels_.size(),
+                       spec_.symmetry == Symmetry::equatorial ? ", equatorial" : "");
+  }
+
+ private:
+  std::vector<Level> levels_;
+  HierarchySpec spec_;
+};
+
 HierarchySpec spec_from(const core::ParamSection& p) {
   HierarchySpec s;
   s.n = static_cast<int>(p.integer("n"));
@@ -33,6 +47,7 @@ HierarchySpec spec_from(const core::ParamSection& p) {
 void declare(core::PluginBuilder& b) {
   auto state = std::make_shared<State>();
   b.implements("grid");
+  b.implements(grid_layout_capability);
 
   b.integer("n")
       .doc("intervals per side of the cube (n + 1 points); even, so that the origin and the axes are grid points")
@@ -52,8 +67,16 @@ void declare(core::PluginBuilder& b) {
       .default_value(std::int64_t{4})
       .at_least(2);
 
-  b.schedule(Bin::paramcheck, "check_hierarchy", [](Context& ctx) { build_hierarchy(spec_from(ctx.params())); })
-      .doc("n and the coarsening parameters give a valid hierarchy (also run by bhnsid check)");
+  b.schedule(Bin::paramcheck, "check_hierarchy", [](Context& ctx) {
+     const HierarchySpec spec = spec_from(ctx.params());
+     ctx.publish<GridLayout>(grid_layout_capability, std::make_shared<Layout>(build_hierarchy(spec), spec));
+   }).doc("n and the coarsening parameters give a valid hierarchy, published as the layout memory estimates read");
+  b.memory([](const Context& ctx, core::MemoryEstimate& m) {
+    // The masks: one byte a point on every level, about one per excised region.
+    const auto& layout = ctx.services().get<GridLayout>(grid_layout_capability);
+    m.add(ctx.plugin(), "masks", fmt::format("excision masks (1 byte a point) at {}", layout.describe()),
+          layout.field_bytes(core::Storage::all_levels) / sizeof(double));
+  });
 
   b.schedule(Bin::startup, "create", [state](Context& ctx) {
      const HierarchySpec spec = spec_from(ctx.params());

@@ -5,6 +5,9 @@
 
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/plugin.hpp"
+#include "bhnsid/interfaces/elliptic.hpp"
+#include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/spacetime.hpp"
 #include "hamiltonian.hpp"
 
 namespace bhnsid::hamiltonian {
@@ -22,6 +25,18 @@ void declare(core::PluginBuilder& b) {
   b.require("grid");
   b.require("elliptic_solver");
   b.implements("equation.hamiltonian");
+  b.memory([](const Context& ctx, core::MemoryEstimate& m) {
+    m.count(memory_unknown_components, 1);
+    if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
+      layout->estimate_field(m, ctx.plugin(), fields::chi, 1);
+      layout->estimate_field(m, ctx.plugin(), fields::puncture_phi, 1);
+      layout->estimate_field(m, ctx.plugin(), fields::aa, 1);
+      layout->estimate_field(m, ctx.plugin(), fields::rho0, 1);
+      layout->estimate_field(m, ctx.plugin(), fields::press, 1);
+      layout->estimate_field(m, ctx.plugin(), fields::enthalpy, 1);
+      layout->estimate_field(m, ctx.plugin(), fields::fluid_velocity, 3);
+    }
+  });
 
   b.real("initial_chi").doc("starting value of chi everywhere (a hydro plugin may overwrite it with its own guess)").default_value(1.0).greater_than(0);
   b.real("test_matter_scale")

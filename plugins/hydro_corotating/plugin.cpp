@@ -9,6 +9,8 @@
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/core/plugin.hpp"
+#include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/spacetime.hpp"
 #include "star.hpp"
 
 namespace bhnsid::hydro_corotating {
@@ -48,6 +50,16 @@ void declare(core::PluginBuilder& b) {
   b.require("equation.hamiltonian");
   b.require("equation.lapse");
   b.implements("hydro");
+  b.memory([](const Context& ctx, core::MemoryEstimate& m) {
+    if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
+      layout->estimate_field(m, ctx.plugin(), fields::rho0, 1);
+      layout->estimate_field(m, ctx.plugin(), fields::press, 1);
+      layout->estimate_field(m, ctx.plugin(), fields::enthalpy, 1);
+      // The star's update builds the lapse and the enthalpy on the finest level in scratch arrays.
+      m.add(ctx.plugin(), "scratch", fmt::format("two finest-level scratch arrays at {}", layout->describe()),
+            2 * layout->field_bytes(core::Storage::finest_only));
+    }
+  });
 
   b.real("rho_max").doc("maximum rest-mass density (rho0)_max of the star, a fixed input (code units, K = 1)").required(0.1).greater_than(0);
   b.real("x_a")

@@ -8,6 +8,7 @@
 
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/plugin.hpp"
+#include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "evaluator.hpp"
 
@@ -26,6 +27,13 @@ void declare(core::PluginBuilder& b) {
   auto state = std::make_shared<State>();
   b.require("grid");
   b.implements("ire");
+  b.memory([](const Context& ctx, core::MemoryEstimate& m) {
+    if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
+      // Two int32 slot maps and two byte masks per finest point (evaluator.cpp's box).
+      m.add(ctx.plugin(), "box", fmt::format("the evaluator's point maps (10 bytes a point) at {}", layout->describe()),
+            10.0 / sizeof(double) * layout->field_bytes(core::Storage::finest_only));
+    }
+  });
   b.integer("exclude_cells")
       .doc("the puncture's region left out of the norms: the excision cube (or, without a shift, the cube of side "
            "max(Mhat_BH/2, 3 dx)) widened by this many points")

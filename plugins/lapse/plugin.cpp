@@ -5,6 +5,9 @@
 
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/plugin.hpp"
+#include "bhnsid/interfaces/elliptic.hpp"
+#include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/spacetime.hpp"
 #include "lapse.hpp"
 
 namespace bhnsid::lapse {
@@ -18,6 +21,12 @@ void declare(core::PluginBuilder& b) {
   b.require("elliptic_solver");
   b.require("equation.hamiltonian");
   b.implements("equation.lapse");
+  b.memory([](const Context& ctx, core::MemoryEstimate& m) {
+    m.count(memory_unknown_components, 1);
+    if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
+      layout->estimate_field(m, ctx.plugin(), fields::eta, 1);
+    }
+  });
 
   b.real("initial_eta").doc("starting value of eta = alpha phi everywhere (a hydro plugin may overwrite it)").default_value(1.0).greater_than(0);
   b.real("test_matter_scale")

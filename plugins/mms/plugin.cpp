@@ -11,6 +11,8 @@
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/core/plugin.hpp"
+#include "bhnsid/interfaces/elliptic.hpp"
+#include "bhnsid/interfaces/grid.hpp"
 #include "manufactured.hpp"
 
 namespace bhnsid::mms {
@@ -59,6 +61,15 @@ void declare(core::PluginBuilder& b) {
   b.require("grid");
   b.implements("equation.mms");
   b.implements("equation.mms_partner");
+  b.memory([](const Context& ctx, core::MemoryEstimate& m) {
+    m.count(memory_unknown_components, 6);
+    if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
+      layout->estimate_field(m, ctx.plugin(), "mms_u", 3);
+      layout->estimate_field(m, ctx.plugin(), "mms_source", 3);
+      layout->estimate_field(m, ctx.plugin(), "mms_w", 3);
+      layout->estimate_field(m, ctx.plugin(), "mms_source_w", 3);
+    }
+  });
 
   b.keyword("problem", {"poisson", "nonlinear", "vector", "ball", "coupled"})
       .doc("manufactured problem: poisson (the hypre peer's, needs grid.symmetry = none), nonlinear (lap u + c u^5), "

@@ -7,6 +7,9 @@
 
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/plugin.hpp"
+#include "bhnsid/interfaces/elliptic.hpp"
+#include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/spacetime.hpp"
 #include "momentum.hpp"
 
 namespace bhnsid::momentum {
@@ -25,6 +28,13 @@ void declare(core::PluginBuilder& b) {
   b.require("grid");
   b.require("elliptic_solver");
   b.implements("equation.momentum");
+  b.memory([](const Context& ctx, core::MemoryEstimate& m) {
+    m.count(memory_unknown_components, 3);
+    if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
+      layout->estimate_field(m, ctx.plugin(), fields::wvec, 3);
+      layout->estimate_field(m, ctx.plugin(), fields::ahat, 6);
+    }
+  });
 
   b.real("test_source_scale")
       .doc("TEST ONLY: multiplies the matter term 16 pi sigma^2 eta phi^10 chi^-7 J^i by this factor, so that "

@@ -259,9 +259,12 @@ namespace {
 /// to store(r, t, p, value) for row r, field t (its index in fields) and the row's point p.
 template <class Store>
 void row_residuals(const RobinRows& rows, const std::vector<RobinResidual>& fields, Store&& store) {
-  in_batches(fields, [&](auto batch, const RobinResidual* f, const auto& u, const auto& u_inf) {
+  // `store` reaches the parallel region as an init-capture: clang 14 cannot capture the enclosing
+  // function's parameter itself through the outlined OpenMP region of a generic lambda.
+  in_batches(fields, [&, put = &store](auto batch, const RobinResidual* f, const auto& u, const auto& u_inf) {
     constexpr int N = decltype(batch)::value;
     const std::size_t first = static_cast<std::size_t>(f - fields.data());
+    auto& store = *put;
 #pragma omp parallel if (static_cast<long>(rows.size()) >= stencil::parallel_min_points)
     row_sums<N>(rows, u, u_inf, [&](std::size_t r, const std::array<double, N>& sum) {
       const std::ptrdiff_t p = rows.point[r];

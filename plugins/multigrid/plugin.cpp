@@ -2,11 +2,14 @@
 // FAS multigrid; CHECK reports whether that solve reached its tolerance.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <memory>
 
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/core/plugin.hpp"
+#include "bhnsid/interfaces/elliptic.hpp"
+#include "bhnsid/interfaces/grid.hpp"
 #include "solver.hpp"
 
 namespace bhnsid::multigrid {
@@ -39,6 +42,22 @@ Settings settings_from(const core::ParamSection& p) {
   return s;
 }
 
+// The direct solve's Newton steps each refactorise a Jacobian whose LU fill, for a 3-D stencil under
+// Eigen's COLAMD ordering, grows about like rows^(4/3) (nested-dissection bound; measured in
+// docs/reliability.md); time grows faster still, so very large coarsest levels are refused.
+double coarse_lu_bytes(double rows) { return 12.0 * 60.0 * std::pow(rows, 4.0 / 3.0); }
+
+constexpr double max_coarse_rows = 60000;
+
+void check_coarse_rows(double rows, const Level& coarsest, const std::string& where) {
+  if (rows > max_coarse_rows)
+    throw core::InputError(fmt::format(
+        "grid.max_levels / grid.min_coarse_intervals: the coarsest level ({} x {} x {} points at {}) gives the "
+        "direct solve {:.0f} unknowns, more than the {:.0f} it is bounded to; allow more levels (grid.max_levels = 0) "
+        "or a smaller grid.min_coarse_intervals",
+        coarsest.nx, coarsest.ny, coarsest.nz, where, rows, max_coarse_rows));
+}
+
 std::string history_table(const SolveReport& report) {
   std::string out = "# cycle\tseconds\tfactor";
   for (const auto& name : report.equations) out += fmt::format("\tresidual_{}\ttau_{}", name, name);
@@ -55,6 +74,25 @@ void declare(core::PluginBuilder& b) {
   auto state = std::make_shared<State>();
   b.implements("elliptic_solver");
   b.require("grid");
+  b.memory(
+      [](const Context& ctx, core::MemoryEstimate& m) {
+        const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability);
+        const double unknowns = m.counted(memory_unknown_components);
+        if (!layout || unknowns == 0) return;
+        // Per unknown component: FAS right-hand side and saved start on the coarse levels, a residual
+        // on every level.
+        const double scratch = unknowns * (2 * layout->field_bytes(core::Storage::coarse_levels) +
+                                           layout->field_bytes(core::Storage::all_levels));
+        m.add(ctx.plugin(), "scratch",
+              fmt::format("FAS scratch for {:.0f} unknown components at {}", unknowns, layout->describe()), scratch);
+        const Level& coarsest = layout->levels().back();
+        const double rows = unknowns * coarsest.nx * coarsest.ny * coarsest.nz;
+        check_coarse_rows(rows, coarsest, layout->describe());
+        m.add(ctx.plugin(), "coarse_lu",
+              fmt::format("the coarsest level's sparse LU ({:.0f} rows) at {}", rows, layout->describe()),
+              coarse_lu_bytes(rows));
+      },
+      core::MemoryStage::derived);
 
   b.keyword("cycle", {"V", "W", "F"}).doc("multigrid cycle from the finest level").default_value(std::string("V"));
   b.integer("pre_sweeps").doc("red-black Gauss-Seidel sweeps before descending").default_value(std::int64_t{2}).at_least(0);

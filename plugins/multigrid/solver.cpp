@@ -8,6 +8,7 @@
 #include <set>
 
 #include "bhnsid/core/errors.hpp"
+#include "bhnsid/core/interrupt.hpp"
 #include "bhnsid/interfaces/stencil.hpp"
 #include "coarse_solver.hpp"
 #include "transfer.hpp"
@@ -464,6 +465,11 @@ SolveReport FasSolver::solve_cycles() {
   int stalled = 0;
   double log_factor_sum = 0;
   for (int number = 1; number <= settings_.max_cycles; ++number) {
+    // A stopping signal ends the solve between cycles, unconverged; the core then keeps this state.
+    if (core::interrupt_signal() != 0) {
+      report.message = fmt::format("interrupted after {} cycles", number - 1);
+      return report;
+    }
     start = clock::now();
     cycle(0, settings_.cycle);
     CycleRecord rec = measure(number);

@@ -6,6 +6,9 @@
 
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/plugin.hpp"
+#include "bhnsid/interfaces/elliptic.hpp"
+#include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/spacetime.hpp"
 #include "shift.hpp"
 
 namespace bhnsid::shift {
@@ -34,6 +37,16 @@ void declare(core::PluginBuilder& b) {
   b.require("grid");
   b.require("elliptic_solver");
   b.implements("equation.shift");
+  b.memory([](const Context& ctx, core::MemoryEstimate& m) {
+    m.count(memory_unknown_components, 3);
+    if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
+      layout->estimate_field(m, ctx.plugin(), fields::shift, 3);
+      layout->estimate_field(m, ctx.plugin(), fields::rho0, 1);
+      layout->estimate_field(m, ctx.plugin(), fields::press, 1);
+      layout->estimate_field(m, ctx.plugin(), fields::enthalpy, 1);
+      layout->estimate_field(m, ctx.plugin(), fields::fluid_velocity, 3);
+    }
+  });
 
   b.keyword("excision_value", {"lorentz", "plain"})
       .doc("shift held in the excision cube (dimensionless): lorentz = -v/sqrt(1 - |v|^2) (the paper's beta_0), "

@@ -54,20 +54,3 @@ TEST_CASE("core.atomic.failed_write_keeps_old_file", "[core][atomic]") {
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++entries;
   CHECK(entries == 1);
 }
-
-TEST_CASE("core.atomic.run_directory_rules", "[core][atomic]") {
-  // An existing run directory is refused without force, and force never deletes a non-run folder.
-  TempDir dir;
-  const auto run = dir.path() / "run";
-  prepare_run_directory(run, false);
-  write_file_atomic(run / "params.yaml", "x");
-  CHECK_THROWS_WITH(prepare_run_directory(run, false), Contains("--force"));
-  prepare_run_directory(run, true);
-  CHECK_FALSE(std::filesystem::exists(run / "params.yaml"));
-  const auto precious = dir.path() / "precious";
-  std::filesystem::create_directory(precious);
-  write_file_atomic(precious / "thesis.tex", "years of work");
-  CHECK_THROWS_WITH(prepare_run_directory(precious, true), Contains("not a bhnsid run directory"));
-  CHECK(read_file(precious / "thesis.tex") == "years of work");
-  CHECK_THROWS_WITH(prepare_run_directory(precious / "thesis.tex" / "sub", false), Contains("cannot create"));
-}

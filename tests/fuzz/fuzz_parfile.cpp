@@ -1,19 +1,25 @@
-// libFuzzer target for the parameter-file reader: text -> parse_yaml -> parse_parfile ->
-// resolve_params, plus one --set override. A parameter file is the one input a user (or a script
-// writing one) fully controls, so any input must end either in a result or in an InputError that
-// the CLI turns into exit 2. Anything else (another exception, a crash, a sanitizer report, a
+// libFuzzer target for the whole path a user's input takes before a run starts: file bytes ->
+// parse_yaml -> parse_parfile -> --set override -> configure (the real plugins of this build,
+// loaded from its plugin folder) -> check_parameters (every PARAMCHECK entry, the thread bound and
+// the memory estimate), i.e. exactly what `bhnsid check` does; and, beside it, resolve_params
+// against a fixture with one parameter of every type. A parameter file is the one input a user (or
+// a script writing one) fully controls, so any input must end either in a result or in an
+// InputError that the CLI turns into exit 2. Anything else (another exception, a crash, a sanitizer report, a
 // stack overflow, a hang) is a bug, and is deliberately left to escape so libFuzzer records it.
 // The same file is built without libFuzzer into replay_fuzz_parfile (see replay_main.cpp).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "bhnsid/core/configuration.hpp"
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/core/parfile.hpp"
+#include "bhnsid/core/run.hpp"
 
 using namespace bhnsid::core;
 
@@ -67,10 +73,47 @@ void check_resolved(const std::map<std::string, ParamSection>& resolved) {
   }
 }
 
+// The real plugins, as `bhnsid check` finds them next to the executable; loaded once (dlopen is
+// the expensive part and loading is side-effect free).
+PluginLoader& real_plugins() {
+  static PluginLoader loader(plugin_search_path({}));
+  static const bool loaded = [] {
+    if (loader.available().empty()) {
+      std::fprintf(stderr, "fuzz_parfile: no plugins on the plugin path; build them first\n");
+      std::abort();
+    }
+    for (const auto& [name, file] : loader.available()) loader.load(name);
+    return true;
+  }();
+  (void)loaded;
+  return loader;
+}
+
+// `bhnsid check` on the input; comment lines "#set section.key=value" (which YAML ignores) become
+// --set overrides, as on the command line.
+void check_like_the_cli(const std::string& text) {
+  std::vector<std::string> overrides;
+  for (std::size_t start = 0; start < text.size();) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    if (text.compare(start, 4, "#set") == 0) overrides.push_back(text.substr(start + 4, end - start - 4));
+    start = end + 1;
+  }
+  try {
+    const Configuration config = configure(parse_parfile(parse_yaml(text, "fuzz.yaml")), overrides, real_plugins());
+    const MemoryEstimate estimate = check_parameters(config);
+    if (!(estimate.total() > 0)) {
+      std::fprintf(stderr, "fuzz_parfile: a memory estimate of %g bytes\n", estimate.total());
+      std::abort();
+    }
+  } catch (const InputError&) {
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
+  check_like_the_cli(text);
   try {
     check_resolved(resolve_params(parse_parfile(parse_yaml(text, "fuzz.yaml")), active(), {"inactive_plugin"}));
   } catch (const InputError&) {

@@ -1,7 +1,9 @@
 // Test plugin: one parameter of every type, an entry in every bin, a CHECK that converges after
 // `converge_after` iterations, a service, and a switch to fail in a chosen bin. It records the
 // order in which its entries ran into order.txt (OUTPUT) and terminate.txt (TERMINATE).
+#include <chrono>
 #include <memory>
+#include <thread>
 #include <string>
 
 #include "bhnsid/core/context.hpp"
@@ -33,6 +35,7 @@ void declare(PluginBuilder& b) {
   b.real("needed").doc("a required real (units of nothing)").required(1.5);
   b.integer("converge_after").doc("iterations until CHECK converges; 0 never").default_value(std::int64_t{3}).at_least(0);
   b.keyword("fail_in", {"none", "setup", "solve", "output"}).doc("bin to fail in").default_value(std::string("none"));
+  b.integer("sleep_ms").doc("milliseconds each SOLVE takes (concurrent runs, signals)").default_value(std::int64_t{0}).at_least(0).at_most(60000);
   b.variable({"tp_scalar", TensorKind::scalar, TimeParity::even, Storage::all_levels, "a scalar field", ""});
 
   const auto record = [s](const char* tag) { return [s, tag](Context&) { s->order += std::string(tag) + "\n"; }; };
@@ -48,6 +51,7 @@ void declare(PluginBuilder& b) {
   b.schedule(Bin::initial, "initial", record("initial")).doc("initial data");
   b.schedule(Bin::solve, "solve", [s](Context& ctx) {
     s->order += "solve\n";
+    std::this_thread::sleep_for(std::chrono::milliseconds(ctx.params().integer("sleep_ms")));
     s->counter->value += 1;
     maybe_fail(ctx, "solve");
   });

@@ -13,8 +13,4 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& con
 /// Renames a finished file into place and fsyncs both; InputError on failure.
 void commit_file(const std::filesystem::path& from, const std::filesystem::path& to);
 
-/// Creates the run directory. An existing one is refused unless `force`, and even then only when
-/// it looks like a bhnsid run directory (so --force never deletes an unrelated folder).
-void prepare_run_directory(const std::filesystem::path& dir, bool force);
-
 }  // namespace bhnsid::core

@@ -13,7 +13,7 @@
 
 namespace bhnsid::core {
 
-class RunState;
+struct RunState;
 
 class Context {
  public:

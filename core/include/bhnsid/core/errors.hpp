@@ -19,7 +19,15 @@ class RunFailure : public std::runtime_error {
   ~RunFailure() override;
 };
 
+/// A stopping signal ended a command early (exit 128 + the signal, see interrupt.hpp).
+class Interrupted : public std::runtime_error {
+ public:
+  explicit Interrupted(const std::string& what);
+  ~Interrupted() override;
+};
+
 /// Process exit codes, stable for scripts and tests.
+/// An interrupted run exits 128 + the signal: 130 (SIGINT), 143 (SIGTERM), 129 (SIGHUP).
 enum ExitCode : int { exit_ok = 0, exit_run_failed = 1, exit_input = 2, exit_internal = 3 };
 
 }  // namespace bhnsid::core

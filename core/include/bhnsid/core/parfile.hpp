@@ -15,7 +15,7 @@ namespace bhnsid::core {
 struct ParSection {
   std::string name;
   TextPos pos;
-  std::vector<std::pair<YamlNode, YamlNode>> entries;  ///< key, value
+  std::vector<YamlEntry> entries;  ///< key, value
 };
 
 struct ParFile {

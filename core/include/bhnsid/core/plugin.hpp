@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "bhnsid/core/memory.hpp"
 #include "bhnsid/core/param_spec.hpp"
 #include "bhnsid/core/schedule.hpp"
 #include "bhnsid/core/variables.hpp"
@@ -27,6 +28,7 @@ struct PluginDecl {
   std::vector<ParamSpec> params;
   std::vector<VariableSpec> variables;
   std::vector<ScheduleEntry> schedule;
+  std::vector<MemoryEstimator> memory;
 
   const ParamSpec* find_param(const std::string& key) const;
 };
@@ -84,6 +86,11 @@ class PluginBuilder {
 
   ScheduleHandle schedule(Bin bin, std::string name, ScheduledFn fn);
   ScheduleHandle check(std::string name, CheckFn fn);
+
+  /// Estimates what the plugin will allocate, from parameters alone (after PARAMCHECK, so services
+  /// published there, such as a grid's layout, can be read). `derived` runs after every plugin's
+  /// `own` stage and sees its counts.
+  void memory(MemoryFn fn, MemoryStage stage = MemoryStage::own);
 
  private:
   ParamHandle add_param(std::string name, ParamType type);

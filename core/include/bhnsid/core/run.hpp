@@ -3,8 +3,10 @@
 // on failure and writes params.yaml, log.txt, timers.tsv, history.tsv and summary.json.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "bhnsid/core/configuration.hpp"
+#include "bhnsid/core/memory.hpp"
 
 namespace bhnsid::core {
 
@@ -12,18 +14,25 @@ struct RunOptions {
   std::filesystem::path run_directory;
   bool force = false;
   std::string command_line;
+  std::vector<std::filesystem::path> protect;  ///< --force never replaces a directory holding one (the parameter file)
 };
 
 struct RunResult {
-  std::string status;  ///< "converged", "completed" or "failed"
+  std::string status;  ///< "converged", "completed", "failed" or "interrupted"
   int iterations = 0;
   int exit_code = 0;
+  double memory_estimate = 0;  ///< bytes, from check_parameters
 };
 
-/// Runs every PARAMCHECK entry (cross-parameter checks that read parameters only; no services,
-/// no run directory): `bhnsid check` and, before anything is written, `bhnsid run`. A failure is
-/// an InputError naming the entry.
-void check_parameters(const Configuration& config);
+/// Runs every PARAMCHECK entry (cross-parameter checks that read parameters only; no run
+/// directory), bounds run.threads, then sums every plugin's memory estimate and refuses a run
+/// that cannot fit in the memory this process may use: `bhnsid check` and, before anything is
+/// written, `bhnsid run`. A failure is an InputError naming the file and the entry or key.
+MemoryEstimate check_parameters(const Configuration& config);
+
+/// What the process needs beyond its plugins' estimates (code, libraries, stacks, the allocator),
+/// measured as the peak resident size of a run with a tiny grid, 12-18 MiB (docs/reliability.md).
+inline constexpr double process_base_bytes = 32.0 * 1024 * 1024;
 
 RunResult run(const Configuration& config, const RunOptions& options);
 

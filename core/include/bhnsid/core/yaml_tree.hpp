@@ -16,26 +16,42 @@ struct TextPos {
   std::string str() const;  ///< "file:line:col"
 };
 
+struct YamlEntry;
+
 struct YamlNode {
   enum class Kind { null, scalar, sequence, map };
   Kind kind = Kind::null;
   std::string scalar;
   bool plain = true;  ///< false for quoted scalars: never read as a number or a bool
   std::vector<YamlNode> items;                       ///< sequence
-  std::vector<std::pair<YamlNode, YamlNode>> entries;  ///< map, in file order, keys are scalars
+  /// Map, in file order, keys are scalars. A vector of a struct declared below rather than of
+  /// std::pair<YamlNode, YamlNode>: the standard lets vector (not pair) take a type that is still
+  /// incomplete, and clang holds us to it.
+  std::vector<YamlEntry> entries;
   TextPos pos;
 
   const char* kind_name() const;
 };
 
+struct YamlEntry {
+  YamlNode first;   ///< the key, a scalar
+  YamlNode second;  ///< the value
+};
+
 /// Limits that keep hostile input from exhausting the stack or memory.
 inline constexpr int yaml_max_depth = 32;
 inline constexpr std::size_t yaml_max_bytes = 4u << 20;
+/// Longest map key: parameter and section names are short words, and every message quotes the key.
+inline constexpr std::size_t yaml_max_key_length = 128;
 
 /// Parses one document; throws InputError "source:line:col: what" on syntax errors, duplicate keys,
-/// non-scalar keys, anchors/aliases, more than one document, or nesting deeper than yaml_max_depth.
+/// non-scalar or overlong keys, anchors/aliases, tags, more than one document, or nesting deeper
+/// than yaml_max_depth.
 YamlNode parse_yaml(const std::string& text, const std::string& source);
-/// Reads and parses a file; missing, unreadable, empty or oversized files are InputErrors.
+/// Reads a parameter file's bytes; missing, unreadable, non-regular (a FIFO, a device: reading one
+/// could block forever), empty or oversized files are InputErrors.
+std::string read_parfile_text(const std::filesystem::path& path);
+/// Reads and parses a file (read_parfile_text, then parse_yaml).
 YamlNode read_yaml_file(const std::filesystem::path& path);
 
 }  // namespace bhnsid::core

@@ -13,6 +13,10 @@
 
 namespace bhnsid {
 
+/// MemoryEstimate::count key: the unknown components of every equation, from which the solver
+/// estimates its scratch fields and its coarsest-level direct solve.
+inline constexpr const char* memory_unknown_components = "elliptic.unknown_components";
+
 /// Condition on the outer faces of the cube, per component.
 struct OuterBoundary {
   enum class Kind {

@@ -12,6 +12,9 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "bhnsid/core/memory.hpp"
 #include "bhnsid/core/services.hpp"
 #include "bhnsid/core/variables.hpp"
 
@@ -168,5 +171,39 @@ class Grid : public core::Service {
   /// The stored values on the x axis (j at y = 0, k at z = 0): pairs (x_i, value).
   virtual std::vector<std::array<double, 2>> line_x(const double* values, int level) const = 0;
 };
+
+/// The hierarchy a grid will build, published under the capability "grid_layout" during PARAMCHECK,
+/// before anything is allocated, so that every plugin can estimate its memory from parameters
+/// alone (PluginBuilder::memory).
+class GridLayout : public core::Service {
+ public:
+  ~GridLayout() override;
+  /// The levels, finest first, exactly as the grid will build them.
+  virtual const std::vector<Level>& levels() const = 0;
+  /// The parameters that set the sizes, for messages, e.g. "grid.n = 128, 6 levels".
+  virtual std::string describe() const = 0;
+
+  /// Bytes of one field component stored with `storage`, ghosts included.
+  double field_bytes(core::Storage storage) const {
+    const std::vector<Level>& lv = levels();
+    const std::size_t first = storage == core::Storage::coarse_levels ? 1 : 0;
+    const std::size_t count = storage == core::Storage::finest_only ? 1 : lv.size();
+    double bytes = 0;
+    for (std::size_t l = first; l < count; ++l) bytes += static_cast<double>(lv[l].size) * sizeof(double);
+    return bytes;
+  }
+  /// Adds a grid field of `components` components to an estimate, counted once per name as the grid
+  /// stores it once however many plugins register it.
+  void estimate_field(core::MemoryEstimate& estimate, const std::string& plugin, const std::string& name,
+                      int components, core::Storage storage = core::Storage::all_levels) const {
+    estimate.add(plugin, "field " + name,
+                 fmt::format("field {} ({} component{}, {}) at {}", name, components, components == 1 ? "" : "s",
+                             core::to_string(storage), describe()),
+                 components * field_bytes(storage));
+  }
+};
+
+/// The capability a grid's layout is published under, and the counts the memory estimate shares.
+inline constexpr const char* grid_layout_capability = "grid_layout";
 
 }  // namespace bhnsid

@@ -1,0 +1,16 @@
+#pragma once
+// SIGINT, SIGTERM and SIGHUP stop a run at its next safe point rather than killing it: the first
+// signal sets a flag that the core polls between schedule entries (and long loops, such as the
+// multigrid's cycles, poll between iterations); the run then keeps its last state, writes
+// summary.json with "status": "interrupted" and exits 128 + the signal (130, 143, 129). A second
+// signal exits at once. SIGPIPE is ignored, so output to a closed pipe is a failed write, never
+// the end of a run.
+namespace bhnsid::core {
+
+void install_interrupt_handlers();
+/// The first stopping signal received, 0 when none.
+int interrupt_signal();
+/// "SIGINT", "SIGTERM", "SIGHUP" or "signal N".
+const char* signal_name(int signal);
+
+}  // namespace bhnsid::core

@@ -1,0 +1,227 @@
+#include "bhnsid/core/run_directory.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "bhnsid/core/atomic_file.hpp"
+#include "bhnsid/core/errors.hpp"
+
+namespace bhnsid::core {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+constexpr const char* marker_format = "bhnsid run directory";
+constexpr int marker_version = 1;
+
+struct Marker {
+  bool present = false;
+  std::string kind;
+  long pid = 0;
+  std::vector<std::string> files;
+};
+
+// Reads the marker; a file of that name in another format is reported, never taken for ours.
+Marker read_marker(const fs::path& dir) {
+  Marker m;
+  std::ifstream in(dir / run_marker_name, std::ios::binary);
+  if (!in) return m;
+  std::stringstream text;
+  text << in.rdbuf();
+  try {
+    const json j = json::parse(text.str());
+    if (j.at("format") != marker_format || j.at("version") != marker_version) throw std::runtime_error("format");
+    m.kind = j.at("kind").get<std::string>();
+    m.pid = j.at("pid").get<long>();
+    for (const auto& f : j.at("files")) {
+      const std::string name = f.get<std::string>();
+      if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..")
+        throw std::runtime_error("name");
+      m.files.push_back(name);
+    }
+  } catch (const std::exception&) {
+    throw InputError(fmt::format("{}: {} is not a marker this program wrote (unreadable or another format); not "
+                                 "replacing the directory",
+                                 dir.string(), run_marker_name));
+  }
+  m.present = true;
+  return m;
+}
+
+// A temporary file of write_file_atomic ("NAME.tmp.XXXXXX") left by a killed run of ours.
+bool is_our_temporary(const std::string& entry, const std::vector<std::string>& files) {
+  for (const std::string& f : files)
+    if (entry.size() == f.size() + 11 && entry.compare(0, f.size() + 5, f + ".tmp.") == 0) return true;
+  return entry.size() == std::strlen(run_marker_name) + 11 && entry.rfind(std::string(run_marker_name) + ".tmp.", 0) == 0;
+}
+
+// Everything below `dir` that the program did not write, recursing into recorded sub-directories
+// (a validate series' level runs carry markers of their own).
+void foreign_entries(const fs::path& dir, const Marker& marker, const std::string& prefix, std::vector<std::string>& out) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name == run_marker_name || is_our_temporary(name, marker.files)) continue;
+    if (std::find(marker.files.begin(), marker.files.end(), name) == marker.files.end()) {
+      out.push_back(prefix + name);
+      continue;
+    }
+    if (entry.is_directory(ec) && !entry.is_symlink(ec)) {
+      Marker inner = read_marker(entry.path());
+      if (!inner.present) {
+        out.push_back(prefix + name + "/ (no marker)");
+        continue;
+      }
+      foreign_entries(entry.path(), inner, prefix + name + "/", out);
+    }
+  }
+  if (ec) throw InputError(fmt::format("{}: cannot list the directory: {}", dir.string(), ec.message()));
+}
+
+bool is_same_or_inside(const fs::path& inner, const fs::path& outer) {
+  auto i = inner.begin(), o = outer.begin();
+  for (; o != outer.end(); ++i, ++o)
+    if (i == inner.end() || *i != *o) return false;
+  return true;
+}
+
+std::string now_utc() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+}  // namespace
+
+RunDirectory::RunDirectory(fs::path dir, bool force, std::string kind, const std::vector<fs::path>& protect)
+    : dir_(std::move(dir)), kind_(std::move(kind)), started_(now_utc()) {
+  if (dir_.empty()) throw InputError("the run directory name is empty; expected a directory, e.g. --output runs/case");
+  std::error_code ec;
+  if (dir_.has_parent_path()) {
+    fs::create_directories(dir_.parent_path(), ec);
+    if (ec)
+      throw InputError(fmt::format("{}: cannot create the run directory (the folders above it): {}", dir_.string(), ec.message()));
+  }
+  if (::mkdir(dir_.c_str(), 0755) == 0) {
+    created_ = true;
+  } else if (errno != EEXIST) {
+    throw InputError(fmt::format("{}: cannot create the run directory: {}", dir_.string(), std::strerror(errno)));
+  } else if (!force) {
+    throw InputError(fmt::format("{}: the run directory exists; choose another with --output DIR or replace it with "
+                                 "--force",
+                                 dir_.string()));
+  } else {
+    struct stat st {};
+    if (::lstat(dir_.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+      throw InputError(fmt::format("{}: exists and is not a directory (or is a symbolic link); --force only replaces "
+                                   "run directories",
+                                   dir_.string()));
+    const fs::path target = fs::canonical(dir_, ec);
+    const fs::path cwd = fs::current_path(ec);
+    if (!target.empty() && !cwd.empty() && is_same_or_inside(cwd, target))
+      throw InputError(fmt::format("{}: is the working directory or a folder above it; --force never replaces it",
+                                   dir_.string()));
+    for (const fs::path& p : protect) {
+      const fs::path keep = fs::weakly_canonical(p, ec);
+      if (!keep.empty() && is_same_or_inside(keep, target))
+        throw InputError(fmt::format("{}: holds the parameter file ({}); --force never replaces it", dir_.string(),
+                                     p.string()));
+    }
+  }
+  fd_ = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC | O_NOFOLLOW);
+  if (fd_ < 0) {
+    const int error = errno;
+    if (created_) ::rmdir(dir_.c_str());
+    throw InputError(fmt::format("{}: cannot open the run directory: {}", dir_.string(), std::strerror(error)));
+  }
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd_);
+    fd_ = -1;
+    long pid = 0;
+    try {
+      pid = read_marker(dir_).pid;
+    } catch (const InputError&) {
+    }
+    throw InputError(fmt::format("{}: in use by another bhnsid process{}; wait for it to finish or choose another "
+                                 "--output",
+                                 dir_.string(), pid > 0 ? fmt::format(" (PID {})", pid) : std::string()));
+  }
+  try {
+    if (!created_) {
+      const Marker old = read_marker(dir_);
+      std::vector<std::string> foreign;
+      if (old.present) {
+        foreign_entries(dir_, old, "", foreign);
+      } else {
+        for (const auto& entry : fs::directory_iterator(dir_, ec)) foreign.push_back(entry.path().filename().string());
+      }
+      if (!foreign.empty()) {
+        std::sort(foreign.begin(), foreign.end());
+        const std::size_t shown = std::min<std::size_t>(foreign.size(), 5);
+        throw InputError(fmt::format(
+            "{}: {}; --force only replaces what bhnsid wrote, and this directory also holds {} (of {} such entries); "
+            "move them away or choose another --output",
+            dir_.string(), old.present ? "is a bhnsid " + old.kind + " directory" : "is not a bhnsid run directory (no " + std::string(run_marker_name) + ")",
+            fmt::join(foreign.begin(), foreign.begin() + static_cast<std::ptrdiff_t>(shown), ", "), foreign.size()));
+      }
+      for (const auto& entry : fs::directory_iterator(dir_, ec))
+        if (entry.path().filename() != run_marker_name) fs::remove_all(entry.path(), ec);
+      if (ec) throw InputError(fmt::format("{}: cannot remove the old run's files: {}", dir_.string(), ec.message()));
+    }
+    write_marker();
+  } catch (...) {
+    if (created_) abandon();
+    ::close(fd_);
+    fd_ = -1;
+    throw;
+  }
+}
+
+RunDirectory::~RunDirectory() {
+  if (fd_ >= 0) ::close(fd_);  // releases the lock
+}
+
+void RunDirectory::record(const std::string& name) {
+  if (std::find(files_.begin(), files_.end(), name) != files_.end()) return;
+  files_.push_back(name);
+  write_marker();
+}
+
+void RunDirectory::write_marker() {
+  json j;
+  j["format"] = marker_format;
+  j["version"] = marker_version;
+  j["kind"] = kind_;
+  j["pid"] = static_cast<long>(::getpid());
+  j["started"] = started_;
+  j["files"] = files_;
+  write_file_atomic(dir_ / run_marker_name,
+                    j.dump(1) + "\n");
+}
+
+void RunDirectory::abandon() {
+  std::error_code ec;
+  for (const std::string& f : files_) fs::remove_all(dir_ / f, ec);
+  fs::remove(dir_ / run_marker_name, ec);
+  if (created_) fs::remove(dir_, ec);  // only if empty: never more than we made
+  files_.clear();
+}
+
+}  // namespace bhnsid::core

@@ -1,0 +1,75 @@
+// The memory estimate of a real run (grid fields of every equation, the multigrid's scratch and
+// its coarsest-level direct solve) against what the run really took, and the refusals it makes
+// possible (issue 19: grid.n = 4096 or a one-level hierarchy used to die of bad_alloc or the OOM
+// killer).
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include "process.hpp"
+
+using namespace bhnsid::test;
+using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
+
+namespace {
+std::string boosted_puncture() { return (source_dir() / "parfiles" / "boosted_puncture.yaml").string(); }
+}  // namespace
+
+TEST_CASE("plugins.multigrid.memory_estimate_bounds_the_peak", "[multigrid][memory]") {
+  // The estimate must not fall below the peak resident size (else a run it admits can still be
+  // killed), nor exceed it by more than a factor 2 (else it refuses runs that fit). The eight
+  // field equations at n = 64 and n = 96.
+  for (int n : {64, 96}) {
+    TempDir dir;
+    const fs::path out = dir.path() / "run";
+    const ProcessResult r = run_bhnsid({"run", boosted_puncture(), "--output", out.string(), "--set",
+                                        "grid.n=" + std::to_string(n), "--set", "run.threads=1"});
+    INFO("n = " << n << ": " << r.err);
+    REQUIRE(r.exit_code == 0);
+    const double estimate = nlohmann::json::parse(read_file(out / "summary.json"))["memory_estimate_bytes"].get<double>();
+    const double peak = 1024.0 * static_cast<double>(r.max_rss_kib);
+    INFO("estimate " << estimate / 1048576 << " MiB, peak " << peak / 1048576 << " MiB");
+    CHECK(estimate >= peak);
+    CHECK(estimate <= 2 * peak);
+  }
+}
+
+TEST_CASE("plugins.multigrid.runs_that_cannot_fit_are_refused", "[multigrid][memory]") {
+  // grid.n = 4096 (terabytes) is refused by check and by run, naming the estimate, the limit and
+  // the parameter; a one-level hierarchy would need a direct solve of a million unknowns.
+  TempDir dir;
+  const ProcessResult check = run_bhnsid({"check", boosted_puncture(), "--set", "grid.n=4096"});
+  INFO(check.err);
+  CHECK(check.exit_code == 2);
+  CHECK_THAT(check.err, Contains("estimated") && Contains("TiB") && Contains("grid.n = 4096") && Contains("available"));
+  const fs::path out = dir.path() / "run";
+  const ProcessResult run = run_bhnsid({"run", boosted_puncture(), "--set", "grid.n=4096", "--output", out.string()});
+  CHECK(run.exit_code == 2);
+  CHECK_FALSE(fs::exists(out));
+  const ProcessResult one = run_bhnsid({"check", boosted_puncture(), "--set", "grid.max_levels=1"});
+  INFO(one.err);
+  CHECK(one.exit_code == 2);
+  CHECK_THAT(one.err, Contains("direct solve") && Contains("grid.max_levels"));
+  // bhnsid check prints the estimate of a run that fits.
+  const ProcessResult ok = run_bhnsid({"check", boosted_puncture()});
+  CHECK(ok.exit_code == 0);
+  CHECK_THAT(ok.out, Contains("memory: estimated") && Contains("field chi"));
+}
+
+TEST_CASE("plugins.multigrid.validate_levels_are_bounded", "[multigrid][memory]") {
+  // validate --levels 100 used to fail only when memory ran out (and shifted n past 32 bits); now
+  // the count is bounded and the finest level is checked, memory included, before any run.
+  TempDir dir;
+  const ProcessResult many = run_bhnsid({"validate", boosted_puncture(), "--levels", "100", "--output",
+                                         (dir.path() / "v").string(), "--no-plots"});
+  CHECK(many.exit_code == 2);
+  CHECK_THAT(many.err, Contains("at most 8"));
+  CHECK_FALSE(fs::exists(dir.path() / "v"));
+  const ProcessResult big = run_bhnsid({"validate", boosted_puncture(), "--levels", "7", "--output",
+                                        (dir.path() / "w").string(), "--no-plots"});
+  INFO(big.err);
+  CHECK(big.exit_code == 2);
+  CHECK_THAT(big.err, Contains("finest level (n = 4096)") && Contains("estimated"));
+  CHECK_FALSE(fs::exists(dir.path() / "w"));
+}
