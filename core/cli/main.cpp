@@ -33,7 +33,6 @@ void complain(const std::string& line) { std::fputs(line.c_str(), stderr); }
 int main(int argc, char** argv) {
   // A full disk or a file-size limit must reach us as a write error, not kill the process.
   std::signal(SIGXFSZ, SIG_IGN);
-  core::install_interrupt_handlers();
 
   cli::CommonOptions common;
   for (int i = 0; i < argc; ++i) common.command_line += (i ? " " : "") + shell_quote(argv[i]);
@@ -106,8 +105,10 @@ int main(int argc, char** argv) {
     if ((run->parsed() && run->count("--output") && output.empty()) ||
         (validate->parsed() && validate->count("--output") && vopt.output.empty()))
       throw core::InputError("--output: expected a directory name, got an empty string");
-    // A run's results are its files: a closed terminal pipe must not fail it. Every other
-    // command's result is what it prints, so a failed write to stdout is an error.
+    // A run's results are its files: a signal stops it at a safe point and a closed terminal pipe
+    // must not fail it. Every other command's result is what it prints: the signals keep their
+    // default actions (`bhnsid params | head` ends quietly) and a failed write is an error.
+    if (run->parsed() || validate->parsed()) core::install_interrupt_handlers();
     if (run->parsed()) return cli::cmd_run(parfile, common, output, force);
     if (validate->parsed()) return cli::cmd_validate(parfile, common, vopt);
     int code = core::exit_internal;

@@ -115,6 +115,11 @@ RunDirectory::RunDirectory(fs::path dir, bool force, std::string kind, const std
   if (dir_.empty()) throw InputError("the run directory name is empty; expected a directory, e.g. --output runs/case");
   std::error_code ec;
   if (dir_.has_parent_path()) {
+    // The first missing folder above: what abandon() may remove again, when empty.
+    for (fs::path p = dir_.parent_path(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+      first_created_parent_ = p;
+      if (!p.has_parent_path() || p.parent_path() == p) break;
+    }
     fs::create_directories(dir_.parent_path(), ec);
     if (ec)
       throw InputError(fmt::format("{}: cannot create the run directory (the folders above it): {}", dir_.string(), ec.message()));
@@ -122,7 +127,9 @@ RunDirectory::RunDirectory(fs::path dir, bool force, std::string kind, const std
   if (::mkdir(dir_.c_str(), 0755) == 0) {
     created_ = true;
   } else if (errno != EEXIST) {
-    throw InputError(fmt::format("{}: cannot create the run directory: {}", dir_.string(), std::strerror(errno)));
+    const int error = errno;
+    remove_created_parents();
+    throw InputError(fmt::format("{}: cannot create the run directory: {}", dir_.string(), std::strerror(error)));
   } else if (!force) {
     throw InputError(fmt::format("{}: the run directory exists; choose another with --output DIR or replace it with "
                                  "--force",
@@ -219,9 +226,20 @@ void RunDirectory::write_marker() {
 void RunDirectory::abandon() {
   std::error_code ec;
   for (const std::string& f : files_) fs::remove_all(dir_ / f, ec);
-  fs::remove(dir_ / run_marker_name, ec);
-  if (created_) fs::remove(dir_, ec);  // only if empty: never more than we made
   files_.clear();
+  fs::remove(dir_ / run_marker_name, ec);
+  if (!created_) return;
+  fs::remove(dir_, ec);  // only if empty: never more than we made
+  remove_created_parents();
+}
+
+void RunDirectory::remove_created_parents() {
+  if (first_created_parent_.empty()) return;
+  std::error_code ec;
+  for (fs::path p = dir_.parent_path(); !p.empty(); p = p.parent_path()) {
+    if (!fs::remove(p, ec)) break;  // not empty: something else lives there now
+    if (p == first_created_parent_) break;
+  }
 }
 
 }  // namespace bhnsid::core

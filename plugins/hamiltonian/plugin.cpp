@@ -31,10 +31,7 @@ void declare(core::PluginBuilder& b) {
       layout->estimate_field(m, ctx.plugin(), fields::chi, 1);
       layout->estimate_field(m, ctx.plugin(), fields::puncture_phi, 1);
       layout->estimate_field(m, ctx.plugin(), fields::aa, 1);
-      layout->estimate_field(m, ctx.plugin(), fields::rho0, 1);
-      layout->estimate_field(m, ctx.plugin(), fields::press, 1);
-      layout->estimate_field(m, ctx.plugin(), fields::enthalpy, 1);
-      layout->estimate_field(m, ctx.plugin(), fields::fluid_velocity, 3);
+      layout->estimate_fields(m, ctx.plugin(), fields::fluid_sizes);
     }
   });
 

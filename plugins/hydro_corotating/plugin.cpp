@@ -52,9 +52,7 @@ void declare(core::PluginBuilder& b) {
   b.implements("hydro");
   b.memory([](const Context& ctx, core::MemoryEstimate& m) {
     if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
-      layout->estimate_field(m, ctx.plugin(), fields::rho0, 1);
-      layout->estimate_field(m, ctx.plugin(), fields::press, 1);
-      layout->estimate_field(m, ctx.plugin(), fields::enthalpy, 1);
+      layout->estimate_fields(m, ctx.plugin(), fields::fluid_sizes);
       // The star's update builds the lapse and the enthalpy on the finest level in scratch arrays.
       m.add(ctx.plugin(), "scratch", fmt::format("two finest-level scratch arrays at {}", layout->describe()),
             2 * layout->field_bytes(core::Storage::finest_only));

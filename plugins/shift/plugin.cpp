@@ -41,10 +41,7 @@ void declare(core::PluginBuilder& b) {
     m.count(memory_unknown_components, 3);
     if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
       layout->estimate_field(m, ctx.plugin(), fields::shift, 3);
-      layout->estimate_field(m, ctx.plugin(), fields::rho0, 1);
-      layout->estimate_field(m, ctx.plugin(), fields::press, 1);
-      layout->estimate_field(m, ctx.plugin(), fields::enthalpy, 1);
-      layout->estimate_field(m, ctx.plugin(), fields::fluid_velocity, 3);
+      layout->estimate_fields(m, ctx.plugin(), fields::fluid_sizes);
     }
   });
 

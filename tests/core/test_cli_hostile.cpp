@@ -28,6 +28,18 @@ std::vector<std::string> slow_run(const fs::path& parfile, const fs::path& out, 
   return with_plugins(args);
 }
 
+// A slow counter run (SOLVE sleeps `sleep_ms`) started in the background into dir/out, once it
+// has written `ready` into `file` of its run directory.
+struct SlowRun {
+  SlowRun(const std::string& extra, const std::string& file, const std::string& ready)
+      : parfile(dir.write("case.yaml", counter_parfile(extra))), out(dir.path() / "out"), run(slow_run(parfile, out)) {
+    REQUIRE(wait_for_text(out / file, ready));
+  }
+  TempDir dir;
+  fs::path parfile, out;
+  Background run;
+};
+
 void expect_input_error(const ProcessResult& r, const std::string& text) {
   INFO("stderr: " << r.err);
   CHECK(r.signal == 0);
@@ -88,18 +100,15 @@ TEST_CASE("core.hostile.validate_force_keeps_foreign_folders", "[core][hostile]"
 TEST_CASE("core.hostile.two_runs_into_one_directory", "[core][hostile]") {
   // The second of two concurrent runs into one directory is refused at once, with or without
   // --force, naming the PID of the first; the first completes untouched.
-  TempDir dir;
-  const auto parfile = dir.write("case.yaml", counter_parfile("  sleep_ms: 300\n"));
-  const fs::path out = dir.path() / "out";
-  Background first(slow_run(parfile, out));
-  REQUIRE(wait_for_text(out / ".bhnsid-run.json", "log.txt.partial"));
+  SlowRun first("  sleep_ms: 300\n", ".bhnsid-run.json", "log.txt.partial");
+  const fs::path& out = first.out;
   for (bool force : {false, true}) {
-    const ProcessResult second = run_bhnsid(slow_run(parfile, out, force));
+    const ProcessResult second = run_bhnsid(slow_run(first.parfile, out, force));
     INFO("stderr: " << second.err);
     CHECK(second.exit_code == 2);
-    if (force) CHECK_THAT(second.err, Contains("in use") && Contains("PID " + std::to_string(first.pid())));
+    if (force) CHECK_THAT(second.err, Contains("in use") && Contains("PID " + std::to_string(first.run.pid())));
   }
-  const ProcessResult r = first.wait();
+  const ProcessResult r = first.run.wait();
   INFO("stderr: " << r.err);
   CHECK(r.exit_code == 0);
   const json s = json::parse(read_file(out / "summary.json"));
@@ -111,11 +120,11 @@ TEST_CASE("core.hostile.full_disk_leaves_nothing_behind", "[core][hostile]") {
   // A disk too full for the first byte leaves no directory, so the retry is not told "exists".
   TempDir dir;
   const auto parfile = dir.write("case.yaml", counter_parfile());
-  const fs::path out = dir.path() / "out";
+  const fs::path out = dir.path() / "runs" / "deep" / "out";
   const ProcessResult full = bhnsid_with_test_plugins({"run", parfile.string(), "--output", out.string()}, {}, 1);
   INFO("stderr: " << full.err);
   CHECK(full.exit_code == 2);
-  CHECK_FALSE(fs::exists(out));
+  CHECK_FALSE(fs::exists(dir.path() / "runs"));  // nor the folders made for it
   CHECK(bhnsid_with_test_plugins({"run", parfile.string(), "--output", out.string()}).exit_code == 0);
 }
 
@@ -133,13 +142,10 @@ TEST_CASE("core.hostile.signals_stop_at_a_safe_point", "[core][hostile]") {
   // SIGINT, SIGTERM and SIGHUP used to leave no summary: now the run keeps its last state (OUTPUT
   // runs), writes summary.json "interrupted" and exits 128 + the signal.
   for (const auto& [sig, code] : {std::pair{SIGINT, 130}, std::pair{SIGTERM, 143}, std::pair{SIGHUP, 129}}) {
-    TempDir dir;
-    const auto parfile = dir.write("case.yaml", counter_parfile("  sleep_ms: 200\n  converge_after: 0\n"));
-    const fs::path out = dir.path() / "out";
-    Background run(slow_run(parfile, out));
-    REQUIRE(wait_for_text(out / "log.txt.partial", "iteration 1/"));
-    run.signal(sig);
-    const ProcessResult r = run.wait();
+    SlowRun slow("  sleep_ms: 200\n  converge_after: 0\n", "log.txt.partial", "iteration 1/");
+    const fs::path& out = slow.out;
+    slow.run.signal(sig);
+    const ProcessResult r = slow.run.wait();
     INFO("signal " << sig << ", stderr: " << r.err);
     CHECK(r.exit_code == code);
     const json s = json::parse(read_file(out / "summary.json"));
@@ -152,16 +158,12 @@ TEST_CASE("core.hostile.signals_stop_at_a_safe_point", "[core][hostile]") {
 
 TEST_CASE("core.hostile.second_signal_exits_at_once", "[core][hostile]") {
   // One SOLVE sleeps 4 s: the first SIGINT waits for its end, the second exits at once.
-  TempDir dir;
-  const auto parfile = dir.write("case.yaml", counter_parfile("  sleep_ms: 4000\n"));
-  const fs::path out = dir.path() / "out";
-  Background run(slow_run(parfile, out));
-  REQUIRE(wait_for_text(out / "log.txt.partial", "schedule"));
+  SlowRun slow("  sleep_ms: 4000\n", "log.txt.partial", "schedule");
   ::usleep(300000);
-  run.signal(SIGINT);
+  slow.run.signal(SIGINT);
   ::usleep(300000);
-  run.signal(SIGINT);
-  const ProcessResult r = run.wait();
+  slow.run.signal(SIGINT);
+  const ProcessResult r = slow.run.wait();
   INFO("stderr: " << r.err);
   CHECK(r.exit_code == 130);
   CHECK(r.seconds < 3.0);

@@ -4,7 +4,7 @@
 // multigrid's cycles, poll between iterations); the run then keeps its last state, writes
 // summary.json with "status": "interrupted" and exits 128 + the signal (130, 143, 129). A second
 // signal exits at once. SIGPIPE is ignored, so output to a closed pipe is a failed write, never
-// the end of a run.
+// the end of a run. Installed by `run` and `validate` only.
 namespace bhnsid::core {
 
 void install_interrupt_handlers();

@@ -28,17 +28,19 @@ class RunDirectory {
   /// Records, before it is written, that the program writes `name` (a file or sub-directory
   /// directly inside), so that a later --force may replace it.
   void record(const std::string& name);
-  /// Removes what was recorded, the marker and, when this object created it, the directory: used
-  /// when a run fails before anything has run.
+  /// Removes what was recorded, the marker and, when this object created them, the directory and
+  /// the folders above it (when empty): used when a run fails before anything has run.
   void abandon();
 
  private:
   void write_marker();
+  void remove_created_parents();
   std::filesystem::path dir_;
   std::string kind_;
   std::string started_;
   int fd_ = -1;
   bool created_ = false;
+  std::filesystem::path first_created_parent_;  ///< the topmost folder above dir_ this object created
   std::vector<std::string> files_;
 };
 

@@ -172,6 +172,12 @@ class Grid : public core::Service {
   virtual std::vector<std::array<double, 2>> line_x(const double* values, int level) const = 0;
 };
 
+/// A grid field's name and number of components, for memory estimates.
+struct FieldSize {
+  const char* name;
+  int components;
+};
+
 /// The hierarchy a grid will build, published under the capability "grid_layout" during PARAMCHECK,
 /// before anything is allocated, so that every plugin can estimate its memory from parameters
 /// alone (PluginBuilder::memory).
@@ -200,6 +206,10 @@ class GridLayout : public core::Service {
                  fmt::format("field {} ({} component{}, {}) at {}", name, components, components == 1 ? "" : "s",
                              core::to_string(storage), describe()),
                  components * field_bytes(storage));
+  }
+  template <class Sizes>
+  void estimate_fields(core::MemoryEstimate& estimate, const std::string& plugin, const Sizes& sizes) const {
+    for (const FieldSize& f : sizes) estimate_field(estimate, plugin, f.name, f.components);
   }
 };
 

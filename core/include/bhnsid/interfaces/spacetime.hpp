@@ -31,6 +31,8 @@ inline constexpr const char* enthalpy = "enthalpy";    ///< hydro: specific enth
 /// hydro: the fluid's coordinate velocity dx^i/dt (Omegahat xi^i for corotation), so that the
 /// Eulerian velocity is v^i = (beta^i + fluid_velocity^i) / alpha (physics-notes §1.2).
 inline constexpr const char* fluid_velocity = "fluid_velocity";
+/// The fluid fields every equation with matter registers, with their components (memory estimates).
+inline constexpr std::array<FieldSize, 4> fluid_sizes{{{rho0, 1}, {press, 1}, {enthalpy, 1}, {fluid_velocity, 3}}};
 }  // namespace fields
 
 /// The matter as the field equations see it. The fluid fields above live on every level; the

@@ -1,9 +1,10 @@
-// The memory estimate of a real run (grid fields of every equation, the multigrid's scratch and
-// its coarsest-level direct solve) against what the run really took, and the refusals it makes
-// possible (issue 19: grid.n = 4096 or a one-level hierarchy used to die of bad_alloc or the OOM
-// killer).
+// Limits of real runs: the memory estimate (grid fields of every equation, the multigrid's scratch and
+// its coarsest-level direct solve) against what a run really took, the refusals it makes possible
+// (issue 19: grid.n = 4096 or a one-level hierarchy used to die of bad_alloc or the OOM killer),
+// validate's bounds, and signals passed on to the level it runs.
 #include <catch2/catch.hpp>
 
+#include <csignal>
 #include <nlohmann/json.hpp>
 
 #include "process.hpp"
@@ -42,7 +43,7 @@ TEST_CASE("plugins.multigrid.runs_that_cannot_fit_are_refused", "[multigrid][mem
   const ProcessResult check = run_bhnsid({"check", boosted_puncture(), "--set", "grid.n=4096"});
   INFO(check.err);
   CHECK(check.exit_code == 2);
-  CHECK_THAT(check.err, Contains("estimated") && Contains("TiB") && Contains("grid.n = 4096") && Contains("available"));
+  CHECK_THAT(check.err, Contains("estimated") && Contains("TiB") && Contains("grid.n = 4096") && Contains("may use"));
   const fs::path out = dir.path() / "run";
   const ProcessResult run = run_bhnsid({"run", boosted_puncture(), "--set", "grid.n=4096", "--output", out.string()});
   CHECK(run.exit_code == 2);
@@ -72,4 +73,27 @@ TEST_CASE("plugins.multigrid.validate_levels_are_bounded", "[multigrid][memory]"
   CHECK(big.exit_code == 2);
   CHECK_THAT(big.err, Contains("finest level (n = 4096)") && Contains("estimated"));
   CHECK_FALSE(fs::exists(dir.path() / "w"));
+}
+
+TEST_CASE("plugins.multigrid.validate_passes_signals_on_and_reports_bad_output", "[multigrid][signals]") {
+  // SIGTERM to validate alone reaches the level being run, which stops between multigrid cycles
+  // and keeps its state; validate exits 143. An output directory that cannot be created is exit 2
+  // (it was 3, internal error).
+  TempDir dir;
+  const fs::path series = dir.path() / "v";
+  Background validate({"validate", boosted_puncture(), "--set", "grid.n=48", "--set", "grid.dx=0.8333333333333334",
+                       "--output", series.string(), "--no-plots"});
+  REQUIRE(wait_for_text(series / "level_2" / "log.txt.partial", "schedule", 120));
+  validate.signal(SIGTERM);
+  const ProcessResult r = validate.wait(120);
+  INFO(r.out << r.err);
+  CHECK(r.exit_code == 143);
+  CHECK_THAT(r.err, Contains("interrupted by SIGTERM"));
+  const auto level = nlohmann::json::parse(read_file(series / "level_2" / "summary.json"));
+  CHECK(level["status"] == "interrupted");
+
+  const ProcessResult bad = run_bhnsid({"validate", boosted_puncture(), "--output", "/proc/self/bhnsid-validate", "--no-plots"});
+  INFO(bad.err);
+  CHECK(bad.exit_code == 2);
+  CHECK_THAT(bad.err, Contains("cannot create the run directory"));
 }
