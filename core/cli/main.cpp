@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <system_error>
 #include <iostream>
 
@@ -112,16 +113,24 @@ int main(int argc, char** argv) {
     if (run->parsed()) return cli::cmd_run(parfile, common, output, force);
     if (validate->parsed()) return cli::cmd_validate(parfile, common, vopt);
     int code = core::exit_internal;
-    if (check->parsed()) code = cli::cmd_check(parfile, common);
-    if (schedule->parsed()) code = cli::cmd_schedule(parfile, common);
-    if (params->parsed()) code = cli::cmd_params(plugin_names, yaml, common);
-    if (plugins->parsed()) code = cli::cmd_plugins(common);
-    if (std::fflush(stdout) != 0 || std::ferror(stdout))
-      throw std::system_error(errno, std::generic_category(), "standard output");
+    try {
+      if (check->parsed()) code = cli::cmd_check(parfile, common);
+      if (schedule->parsed()) code = cli::cmd_schedule(parfile, common);
+      if (params->parsed()) code = cli::cmd_params(plugin_names, yaml, common);
+      if (plugins->parsed()) code = cli::cmd_plugins(common);
+      if (std::fflush(stdout) != 0 || std::ferror(stdout))
+        throw std::system_error(errno, std::generic_category(), "standard output");
+    } catch (const std::filesystem::filesystem_error&) {
+      throw;
+    } catch (const std::system_error& e) {
+      // fmt::print reports a failed write this way (a full disk).
+      complain(fmt::format("bhnsid: error: cannot write the output: {}\n", e.what()));
+      return core::exit_input;
+    }
     return code;
-  } catch (const std::system_error& e) {
-    // fmt::print reports a failed write this way (a full disk, a closed pipe).
-    complain(fmt::format("bhnsid: error: cannot write the output: {}\n", e.what()));
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A folder or file the system refused: it names the path and the reason.
+    complain(fmt::format("bhnsid: error: {}\n", e.what()));
     return core::exit_input;
   } catch (const core::InputError& e) {
     complain(fmt::format("bhnsid: error: {}\n", e.what()));

@@ -64,21 +64,36 @@ int spawn(const std::vector<std::string>& args, const fs::path& log) {
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  // The level runs in a process group of its own: a terminal's Ctrl-C reaches validate alone, which
+  // passes each stopping signal on exactly once (interrupt.cpp), so that the first stops the level
+  // at its safe point and only a second ends it at once.
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t stopping, none, before;
+  sigemptyset(&stopping);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&stopping, sig);
+  sigemptyset(&none);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK);
+  posix_spawnattr_setpgroup(&attr, 0);
+  posix_spawnattr_setsigmask(&attr, &none);
+  // Held back until the child is known to the handler, then delivered (and passed on) at once.
+  sigprocmask(SIG_BLOCK, &stopping, &before);
   pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  const int rc = interrupt_signal() != 0 ? -1 : posix_spawn(&pid, argv[0], &actions, &attr, argv.data(), environ);
+  if (rc == 0) forward_interrupts_to(pid);
+  sigprocmask(SIG_SETMASK, &before, nullptr);
   posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attr);
+  if (rc < 0)
+    throw Interrupted(fmt::format("validate: interrupted by {} before {} started", signal_name(interrupt_signal()), args[1]));
   if (rc != 0) throw RunFailure(fmt::format("validate: cannot start {}: {}", args[0], std::strerror(rc)));
-  // A stopping signal sent to validate alone (kill PID) is passed on, so that the level run stops at
-  // its safe point and keeps its state; from a terminal the child has it already.
   int status = 0;
-  bool forwarded = false;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) throw RunFailure(fmt::format("validate: waiting for {}: {}", args[0], std::strerror(errno)));
-    if (!forwarded && interrupt_signal() != 0) {
-      ::kill(pid, interrupt_signal());
-      forwarded = true;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) {
+      forward_interrupts_to(0);
+      throw RunFailure(fmt::format("validate: waiting for {}: {}", args[0], std::strerror(errno)));
     }
-  }
+  forward_interrupts_to(0);
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
@@ -171,7 +186,10 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
   {
     directory.record("finest_check.out");
     const fs::path out = dir / "finest_check.out";
-    if (spawn(level_args(opt.levels - 1, "check", dir / "parfile.yaml"), out) != 0) {
+    const int rc = spawn(level_args(opt.levels - 1, "check", dir / "parfile.yaml"), out);
+    if (interrupt_signal() != 0)
+      throw Interrupted(fmt::format("validate: interrupted by {} while checking the finest level", signal_name(interrupt_signal())));
+    if (rc != 0) {
       std::string why = read_text(out);
       while (!why.empty() && why.back() == '\n') why.pop_back();
       const std::string prefix = "bhnsid: error: ";

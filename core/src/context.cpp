@@ -47,7 +47,11 @@ int Context::iteration() const { return state_->iteration; }
 const std::filesystem::path& Context::run_directory() const { return state_->run_dir; }
 
 void Context::write_output(const std::string& relative_name, const std::string& contents) const {
-  if (state_->directory) state_->directory->record(std::filesystem::path(relative_name).begin()->string());
+  const std::filesystem::path name = std::filesystem::path(relative_name).lexically_normal();
+  if (name.empty() || name.is_absolute() || *name.begin() == ".." || *name.begin() == "." || !name.has_filename())
+    throw std::logic_error(fmt::format("plugin '{}' writes '{}': expected a file name inside the run directory",
+                                       decl_->name, relative_name));
+  if (state_->directory) state_->directory->record(name.begin()->string());
   write_file_atomic(state_->run_dir / relative_name, contents);
 }
 

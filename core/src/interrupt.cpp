@@ -11,8 +11,12 @@ namespace bhnsid::core {
 namespace {
 
 volatile std::sig_atomic_t received = 0;
+volatile std::sig_atomic_t child = 0;
 
 extern "C" void on_stop_signal(int signal) {
+  // The child runs in a process group of its own, so the terminal's signal reaches it only
+  // through here: once for the first signal, once more for the second.
+  if (child > 0) ::kill(static_cast<pid_t>(child), signal);
   if (received != 0) ::_exit(128 + signal);
   received = signal;
   static const char message[] =
@@ -28,12 +32,19 @@ void install_interrupt_handlers() {
   struct sigaction action {};
   action.sa_handler = on_stop_signal;
   sigemptyset(&action.sa_mask);
-  // No SA_RESTART: a blocking wait (validate's waitpid on a level run) returns EINTR, so the signal
-  // can be passed on to the child.
-  action.sa_flags = 0;
-  for (int signal : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal, &action, nullptr);
+  // One handler at a time: a SIGTERM arriving inside the SIGINT handler then counts as the second.
+  for (int signal : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&action.sa_mask, signal);
+  action.sa_flags = SA_RESTART;
+  for (int signal : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction old {};
+    // A signal ignored when we started stays ignored: `nohup bhnsid run ... &` survives the logout.
+    if (sigaction(signal, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    sigaction(signal, &action, nullptr);
+  }
   std::signal(SIGPIPE, SIG_IGN);
 }
+
+void forward_interrupts_to(int pid) { child = pid; }
 
 int interrupt_signal() { return received; }
 

@@ -1,7 +1,6 @@
 #include "bhnsid/core/memory.hpp"
 
 #include <fmt/format.h>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <cmath>
@@ -115,12 +114,6 @@ MemoryLimit available_memory() {
     if (row >> key >> kib && key == "MemAvailable:") limit = MemoryLimit{kib * 1024, "MemAvailable in /proc/meminfo"};
   }
   cgroup_limit(limit);
-  for (auto [resource, name] : {std::pair{RLIMIT_AS, "RLIMIT_AS (ulimit -v)"}, std::pair{RLIMIT_DATA, "RLIMIT_DATA (ulimit -d)"}}) {
-    rlimit rl{};
-    if (::getrlimit(resource, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY &&
-        static_cast<double>(rl.rlim_cur) < limit.bytes)
-      limit = MemoryLimit{static_cast<double>(rl.rlim_cur), name};
-  }
   return limit;
 }
 

@@ -69,27 +69,65 @@ bool is_our_temporary(const std::string& entry, const std::vector<std::string>& 
   return entry.size() == std::strlen(run_marker_name) + 11 && entry.rfind(std::string(run_marker_name) + ".tmp.", 0) == 0;
 }
 
-// Everything below `dir` that the program did not write, recursing into recorded sub-directories
-// (a validate series' level runs carry markers of their own).
-void foreign_entries(const fs::path& dir, const Marker& marker, const std::string& prefix, std::vector<std::string>& out) {
+// Entry names of a directory, without the exceptions of a range-for over directory_iterator.
+std::vector<std::string> entries_of(const fs::path& dir) {
+  std::vector<std::string> names;
   std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir, ec)) {
-    const std::string name = entry.path().filename().string();
+  for (auto it = fs::directory_iterator(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
+    names.push_back(it->path().filename().string());
+  if (ec) throw InputError(fmt::format("{}: cannot list the directory: {}", dir.string(), ec.message()));
+  return names;
+}
+
+// What a --force takeover found below a previous run's directory: entries the program did not
+// write, and locks on recorded sub-directories that are run directories themselves (a validate
+// series' level runs), held until their removal so that a run still alive there is refused.
+struct OldContents {
+  std::vector<std::string> foreign;
+  std::vector<int> locks;
+  ~OldContents() {
+    for (int fd : locks) ::close(fd);
+  }
+};
+
+void inspect(const fs::path& dir, const Marker& marker, const std::string& prefix, OldContents& out) {
+  for (const std::string& name : entries_of(dir)) {
     if (name == run_marker_name || is_our_temporary(name, marker.files)) continue;
     if (std::find(marker.files.begin(), marker.files.end(), name) == marker.files.end()) {
-      out.push_back(prefix + name);
+      out.foreign.push_back(prefix + name);
       continue;
     }
-    if (entry.is_directory(ec) && !entry.is_symlink(ec)) {
-      Marker inner = read_marker(entry.path());
-      if (!inner.present) {
-        out.push_back(prefix + name + "/ (no marker)");
-        continue;
-      }
-      foreign_entries(entry.path(), inner, prefix + name + "/", out);
+    const fs::path path = dir / name;
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) continue;
+    const Marker inner = read_marker(path);
+    if (!inner.present) {
+      out.foreign.push_back(prefix + name + "/ (no marker)");
+      continue;
     }
+    const int fd = ::open(path.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC | O_NOFOLLOW);
+    if (fd < 0 || ::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      if (fd >= 0) ::close(fd);
+      throw InputError(fmt::format("{}: in use by another bhnsid process (PID {}); --force never touches a directory "
+                                   "in use",
+                                   path.string(), inner.pid));
+    }
+    out.locks.push_back(fd);
+    inspect(path, inner, prefix + name + "/", out);
   }
-  if (ec) throw InputError(fmt::format("{}: cannot list the directory: {}", dir.string(), ec.message()));
+}
+
+// Removes what the previous run recorded (and its temporaries), each failure reported.
+void remove_old_run(const fs::path& dir, const Marker& marker) {
+  for (const std::string& name : entries_of(dir)) {
+    if (name == run_marker_name) continue;
+    if (std::find(marker.files.begin(), marker.files.end(), name) == marker.files.end() &&
+        !is_our_temporary(name, marker.files))
+      continue;  // cannot happen after inspect(); never remove what is not listed
+    std::error_code ec;
+    fs::remove_all(dir / name, ec);
+    if (ec) throw InputError(fmt::format("{}: cannot remove the old run's {}: {}", dir.string(), name, ec.message()));
+  }
 }
 
 bool is_same_or_inside(const fs::path& inner, const fs::path& outer) {
@@ -113,6 +151,9 @@ std::string now_utc() {
 RunDirectory::RunDirectory(fs::path dir, bool force, std::string kind, const std::vector<fs::path>& protect)
     : dir_(std::move(dir)), kind_(std::move(kind)), started_(now_utc()) {
   if (dir_.empty()) throw InputError("the run directory name is empty; expected a directory, e.g. --output runs/case");
+  // "runs/new/" names runs/new: without this its parent_path() would be the directory itself.
+  dir_ = dir_.lexically_normal();
+  if (!dir_.has_filename() && dir_.has_parent_path()) dir_ = dir_.parent_path();
   std::error_code ec;
   if (dir_.has_parent_path()) {
     // The first missing folder above: what abandon() may remove again, when empty.
@@ -155,7 +196,10 @@ RunDirectory::RunDirectory(fs::path dir, bool force, std::string kind, const std
   fd_ = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC | O_NOFOLLOW);
   if (fd_ < 0) {
     const int error = errno;
-    if (created_) ::rmdir(dir_.c_str());
+    if (created_) {
+      ::rmdir(dir_.c_str());
+      remove_created_parents();
+    }
     throw InputError(fmt::format("{}: cannot open the run directory: {}", dir_.string(), std::strerror(error)));
   }
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
@@ -173,24 +217,24 @@ RunDirectory::RunDirectory(fs::path dir, bool force, std::string kind, const std
   try {
     if (!created_) {
       const Marker old = read_marker(dir_);
-      std::vector<std::string> foreign;
-      if (old.present) {
-        foreign_entries(dir_, old, "", foreign);
-      } else {
-        for (const auto& entry : fs::directory_iterator(dir_, ec)) foreign.push_back(entry.path().filename().string());
-      }
-      if (!foreign.empty()) {
-        std::sort(foreign.begin(), foreign.end());
-        const std::size_t shown = std::min<std::size_t>(foreign.size(), 5);
+      OldContents found;
+      if (old.present)
+        inspect(dir_, old, "", found);
+      else
+        found.foreign = entries_of(dir_);
+      if (!found.foreign.empty()) {
+        std::sort(found.foreign.begin(), found.foreign.end());
+        const std::size_t shown = std::min<std::size_t>(found.foreign.size(), 5);
         throw InputError(fmt::format(
             "{}: {}; --force only replaces what bhnsid wrote, and this directory also holds {} (of {} such entries); "
             "move them away or choose another --output",
-            dir_.string(), old.present ? "is a bhnsid " + old.kind + " directory" : "is not a bhnsid run directory (no " + std::string(run_marker_name) + ")",
-            fmt::join(foreign.begin(), foreign.begin() + static_cast<std::ptrdiff_t>(shown), ", "), foreign.size()));
+            dir_.string(),
+            old.present ? "is a bhnsid " + old.kind + " directory"
+                        : "is not a bhnsid run directory (no " + std::string(run_marker_name) + ")",
+            fmt::join(found.foreign.begin(), found.foreign.begin() + static_cast<std::ptrdiff_t>(shown), ", "),
+            found.foreign.size()));
       }
-      for (const auto& entry : fs::directory_iterator(dir_, ec))
-        if (entry.path().filename() != run_marker_name) fs::remove_all(entry.path(), ec);
-      if (ec) throw InputError(fmt::format("{}: cannot remove the old run's files: {}", dir_.string(), ec.message()));
+      if (old.present) remove_old_run(dir_, old);
     }
     write_marker();
   } catch (...) {
@@ -219,8 +263,7 @@ void RunDirectory::write_marker() {
   j["pid"] = static_cast<long>(::getpid());
   j["started"] = started_;
   j["files"] = files_;
-  write_file_atomic(dir_ / run_marker_name,
-                    j.dump(1) + "\n");
+  write_file_atomic(dir_ / run_marker_name, j.dump(1) + "\n");
 }
 
 void RunDirectory::abandon() {

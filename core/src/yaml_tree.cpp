@@ -169,11 +169,11 @@ std::string tab_hint(const std::string& text, int error_line) {
   for (std::size_t start = 0; start < text.size() && line <= error_line; ++line) {
     const std::size_t end = std::min(text.find('\n', start), text.size());
     const std::size_t indent_end = std::min(text.find_first_not_of(" \t", start), end);
-    if (text.find('\t', start) < indent_end)
+    if (text.compare(start, indent_end - start, std::string(indent_end - start, ' ')) != 0)
       return fmt::format(" (line {} is indented with a tab; YAML indents with spaces only)", line + 1);
     // yaml-cpp refuses implicit keys over 1024 characters with "illegal map value".
-    const std::size_t colon = text.find(':', start);
-    if (line == error_line && colon < end && colon - indent_end > 1024)
+    const std::size_t colon = line == error_line ? text.find(':', indent_end) : std::string::npos;
+    if (colon < end && colon - indent_end > 1024)
       return fmt::format(" (line {} starts with a key of {} characters; names of sections and parameters are at "
                          "most {})",
                          line + 1, colon - indent_end, yaml_max_key_length);

@@ -61,11 +61,13 @@ void declare(core::PluginBuilder& b) {
   b.integer("max_levels")
       .doc("most levels in the hierarchy, finest included; 0: coarsen by 2 as long as the rule allows")
       .default_value(std::int64_t{0})
-      .at_least(0);
+      .at_least(0)
+      .at_most(64);
   b.integer("min_coarse_intervals")
       .doc("stop coarsening before a level would have fewer intervals per side than this")
       .default_value(std::int64_t{4})
-      .at_least(2);
+      .at_least(2)
+      .at_most(4096);
 
   b.schedule(Bin::paramcheck, "check_hierarchy", [](Context& ctx) {
      const HierarchySpec spec = spec_from(ctx.params());

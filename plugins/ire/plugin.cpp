@@ -38,18 +38,21 @@ void declare(core::PluginBuilder& b) {
       .doc("the puncture's region left out of the norms: the excision cube (or, without a shift, the cube of side "
            "max(Mhat_BH/2, 3 dx)) widened by this many points")
       .default_value(std::int64_t{2})
-      .at_least(0);
+      .at_least(0)
+      .at_most(4096);
   b.integer("surface_cells")
       .doc("the star's surface band, normed apart: points at most this many points (max norm) from a point whose "
            "rho0 > 0 differs from a neighbour's")
       .default_value(std::int64_t{2})
-      .at_least(0);
+      .at_least(0)
+      .at_most(4096);
 
   b.integer("stride")
       .doc("evaluate at every stride-th point along each axis from the cube's corner, i.e. at the points of the grid "
            "with stride times the spacing (bhnsid validate compares resolutions there, at a fraction of the cost)")
       .default_value(std::int64_t{1})
-      .at_least(1);
+      .at_least(1)
+      .at_most(4096);
 
   b.schedule(Bin::analysis, "residuals", [state](Context& ctx) {
      const auto& grid = ctx.services().get<Grid>("grid");

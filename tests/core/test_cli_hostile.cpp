@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
 #include <nlohmann/json.hpp>
 
@@ -100,7 +101,8 @@ TEST_CASE("core.hostile.validate_force_keeps_foreign_folders", "[core][hostile]"
 TEST_CASE("core.hostile.two_runs_into_one_directory", "[core][hostile]") {
   // The second of two concurrent runs into one directory is refused at once, with or without
   // --force, naming the PID of the first; the first completes untouched.
-  SlowRun first("  sleep_ms: 300\n", ".bhnsid-run.json", "log.txt.partial");
+  // Three iterations of 1 s: ample time for the second run to start and be refused.
+  SlowRun first("  sleep_ms: 1000\n", ".bhnsid-run.json", "log.txt.partial");
   const fs::path& out = first.out;
   for (bool force : {false, true}) {
     const ProcessResult second = run_bhnsid(slow_run(first.parfile, out, force));
@@ -157,16 +159,19 @@ TEST_CASE("core.hostile.signals_stop_at_a_safe_point", "[core][hostile]") {
 }
 
 TEST_CASE("core.hostile.second_signal_exits_at_once", "[core][hostile]") {
-  // One SOLVE sleeps 4 s: the first SIGINT waits for its end, the second exits at once.
-  SlowRun slow("  sleep_ms: 4000\n", "log.txt.partial", "schedule");
+  // One SOLVE sleeps 8 s: the first SIGINT waits for its end, the second exits at once.
+  SlowRun slow("  sleep_ms: 8000\n", "log.txt.partial", "schedule");
   ::usleep(300000);
   slow.run.signal(SIGINT);
   ::usleep(300000);
+  const auto second = std::chrono::steady_clock::now();
   slow.run.signal(SIGINT);
   const ProcessResult r = slow.run.wait();
+  const double after = std::chrono::duration<double>(std::chrono::steady_clock::now() - second).count();
   INFO("stderr: " << r.err);
   CHECK(r.exit_code == 130);
-  CHECK(r.seconds < 3.0);
+  CHECK(after < 4.0);
+  CHECK_FALSE(std::filesystem::exists(slow.out / "summary.json"));  // it did not wait for the safe point
 }
 
 TEST_CASE("core.hostile.closed_stdout_does_not_end_a_run", "[core][hostile]") {

@@ -20,7 +20,12 @@ std::string boosted_puncture() { return (source_dir() / "parfiles" / "boosted_pu
 TEST_CASE("plugins.multigrid.memory_estimate_bounds_the_peak", "[multigrid][memory]") {
   // The estimate must not fall below the peak resident size (else a run it admits can still be
   // killed), nor exceed it by more than a factor 2 (else it refuses runs that fit). The eight
-  // field equations at n = 64 and n = 96.
+  // field equations at n = 64 and n = 96. Under AddressSanitizer the shadow memory and quarantine
+  // make every process larger than the program's own needs: nothing to compare there.
+#if defined(__SANITIZE_ADDRESS__)
+  WARN("skipped: AddressSanitizer inflates the resident size");
+  return;
+#endif
   for (int n : {64, 96}) {
     TempDir dir;
     const fs::path out = dir.path() / "run";

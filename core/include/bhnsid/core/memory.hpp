@@ -49,8 +49,10 @@ struct MemoryEstimator {
   MemoryFn fn;
 };
 
-/// The memory this process may still use: the least of MemAvailable (/proc/meminfo), the cgroup's
-/// memory.max less its current use (v2, or v1's limit_in_bytes) and RLIMIT_AS / RLIMIT_DATA.
+/// The memory this process may still use: the lesser of MemAvailable (/proc/meminfo) and the
+/// cgroup's memory.max less its current use (v2, or v1's limit_in_bytes). ulimit -v is not
+/// consulted: it limits virtual size, which the allocator's arenas and thread stacks inflate far
+/// beyond the resident memory estimated here.
 struct MemoryLimit {
   double bytes = 0;
   std::string source;  ///< where the limit comes from, for the message
