@@ -40,7 +40,9 @@ struct YamlEntry {
 
 /// Limits that keep hostile input from exhausting the stack or memory.
 inline constexpr int yaml_max_depth = 32;
-inline constexpr std::size_t yaml_max_bytes = 4u << 20;
+/// 1 MiB: a parameter file is a few kilobytes, and yaml-cpp's parser alone takes about a second
+/// for 4 MiB of short keys (docs/reliability.md), so the largest accepted file checks in a fraction.
+inline constexpr std::size_t yaml_max_bytes = 1u << 20;
 /// Longest map key: parameter and section names are short words, and every message quotes the key.
 inline constexpr std::size_t yaml_max_key_length = 128;
 
