@@ -9,7 +9,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libfmt-dev  # core: parameter files, CLI, JSON, formatting
   libeigen3-dev libhdf5-dev                          # physics plugins: small dense algebra, field output
   catch2                                             # tests
-  clang libclang-rt-14-dev                           # make fuzz (libFuzzer)
+  clang libclang-rt-14-dev libomp-dev                # make fuzz, make fuzz-check (libFuzzer, OpenMP for clang)
   python3 python3-numpy python3-matplotlib           # validation plots
 )
 if [ "${1:-}" = "--bench" ]; then
