@@ -182,8 +182,9 @@ RunDirectory::RunDirectory(fs::path dir, bool force, std::string kind, const std
                                    "run directories",
                                    dir_.string()));
     const fs::path target = fs::canonical(dir_, ec);
+    if (ec) throw InputError(fmt::format("{}: cannot resolve the directory: {}", dir_.string(), ec.message()));
     const fs::path cwd = fs::current_path(ec);
-    if (!target.empty() && !cwd.empty() && is_same_or_inside(cwd, target))
+    if (ec || is_same_or_inside(cwd, target))
       throw InputError(fmt::format("{}: is the working directory or a folder above it; --force never replaces it",
                                    dir_.string()));
     for (const fs::path& p : protect) {
