@@ -144,7 +144,7 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
                                  "one before)",
                                  opt.levels, max_validate_levels));
   PluginLoader loader(plugin_search_path(common.plugin_dirs));
-  // The file is read once (it may be a pipe), with ire added when it is not listed; input errors,
+  // The file is read once (regular files only), with ire added when it is not listed; input errors,
   // ire.* overrides included, surface here before any run.
   ParFile file = load_parfile(parfile);
   if (std::find(file.plugins.begin(), file.plugins.end(), "ire") == file.plugins.end()) {
