@@ -21,7 +21,7 @@ build: deps $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS)
 
 run: build
-	$(BUILD)/bin/bhnsid run parfiles/boosted_puncture.yaml --force
+	$(BUILD)/bin/bhnsid run parfiles/quickstart.yaml --force
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

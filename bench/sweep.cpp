@@ -74,7 +74,7 @@ int vector_sweep(int max_n, int threads, const std::string& lower_term) {
       s.sy = lv.sy;
       s.sz = lv.sz;
       s.inv_2h = 0.5 / lv.dx;
-      best = best_sweep_seconds(lv, c, nullptr, momentum::MomentumLower<false, false>{s}, reps);
+      best = best_sweep_seconds(lv, c, nullptr, momentum::MomentumLower<false>{s}, reps);
     } else {
       shift::Sources s;
       s.chi = k.chi.data();

@@ -50,7 +50,7 @@ def main():
                 pts = [(xi, v, r) for xi, v, r in zip(x, series, region) if v is not None and not (isinstance(v, float) and math.isnan(v))]
                 if not pts:
                     continue
-                label = f"n = {levels[q]['n']}, x {4 ** q}"
+                label = ", ".join(f"{k} = {v}" for k, v in levels[q]["parameters"].items() if k.endswith(".n")) + f", x {4 ** q}"
                 panel.plot([p[0] for p in pts], [p[1] for p in pts], marker=".", lw=1, ms=3, label=label)
                 away += [p[1] for p in pts if p[2] == "away"]
             # The excluded regions (puncture, star surface) shaded; the scale set by the points away from them.
@@ -71,7 +71,7 @@ def main():
         panels[0, 0].legend(fontsize=8)
         panels[-1, 0].set_xlabel("x (hatted); shaded: left out of the norms (grey: puncture, tan: star surface)")
         fig.tight_layout()
-        path = os.path.join(out_dir, f"ire_{eq}.png")
+        path = os.path.join(out_dir, f"residual_{eq}.png")
         fig.savefig(path + ".tmp.png", dpi=110)
         os.replace(path + ".tmp.png", path)  # atomic: a crash never leaves a half-written plot
         plt.close(fig)

@@ -27,7 +27,10 @@ void print_params(const PluginDecl& decl) {
   for (const auto& p : decl.params) {
     fmt::print("  {:<22} {:<11} {:<24} {}\n", p.name, to_string(p.type),
                p.required() ? "REQUIRED" : "default " + format_value(*p.default_value), describe_range(p));
-    fmt::print("  {:<22} {}{}\n", "", p.doc, p.steerable ? " [steerable]" : "");
+    const char* refines = p.refinement == Refinement::doubles  ? " [doubles per halving of the spacing in validate]"
+                          : p.refinement == Refinement::halves ? " [halves with the spacing in validate]"
+                                                               : "";
+    fmt::print("  {:<22} {}{}{}\n", "", p.doc, p.steerable ? " [steerable]" : "", refines);
   }
 }
 }  // namespace

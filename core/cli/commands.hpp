@@ -27,8 +27,10 @@ struct ValidateOptions {
   bool force = false;
   bool plots = true;
   std::vector<std::string> only;  ///< judge only these equations (all others are reported); empty: all
+  std::vector<std::string> with;  ///< plugins added to the file's list (e.g. a residual evaluator)
 };
-/// Runs the parameter file at dx, dx/2, ... (n doubled, same cube) with the ire plugin, prints each
+/// Runs the parameter file at dx, dx/2, ... (the refined parameters of its plugins, same cube) with
+/// its residual evaluator plugin (core/residual_report.hpp), prints each
 /// equation's residual norms and convergence orders, writes validate.json (and PNG plots); exit 0
 /// when every judged equation converges at least at `threshold`, 1 otherwise.
 int cmd_validate(const std::string& parfile, const CommonOptions& common, const ValidateOptions& options);

@@ -84,8 +84,11 @@ int main(int argc, char** argv) {
   validate->add_flag("--force", vopt.force, "replace an existing validate directory");
   validate->add_flag("!--no-plots", vopt.plots, "skip the PNG plots (python3 with matplotlib)");
   validate->add_option("--only", vopt.only,
-                       "judge only these equations (hamiltonian, momentum, lapse, shift), e.g. for manufactured "
+                       "judge only these of the equations the evaluator reports, e.g. for manufactured "
                        "configurations that satisfy one equation; the others are reported")
+      ->allow_extra_args(false);
+  validate->add_option("--with", vopt.with,
+                       "add a plugin to the file's list (repeatable), e.g. the residual evaluator when the file has none")
       ->allow_extra_args(false);
   add_plugin_path(validate);
 

@@ -1,5 +1,7 @@
-// bhnsid validate: the configuration at dx, dx/2, dx/4 on the same cube, the independent residual
-// evaluator (plugin ire) on each, and the convergence order of every equation's residual.
+// bhnsid validate: the configuration at dx, dx/2, dx/4 on the same cube, an independent residual
+// evaluator on each, and the convergence order of every equation's residual. It knows no plugin:
+// the parameters that follow the resolution are those the plugins declare (ParamHandle::refines),
+// and the equations and their norms are what the evaluator reports (core/residual_report.hpp).
 #include <fmt/format.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -21,6 +23,7 @@
 #include "bhnsid/core/atomic_file.hpp"
 #include "bhnsid/core/configuration.hpp"
 #include "bhnsid/core/errors.hpp"
+#include "bhnsid/core/residual_report.hpp"
 #include "bhnsid/core/interrupt.hpp"
 #include "bhnsid/core/run.hpp"
 #include "bhnsid/core/run_directory.hpp"
@@ -37,12 +40,11 @@ using json = nlohmann::json;
 namespace {
 
 struct Level {
-  int n = 0;
-  double dx = 0;
+  std::map<std::string, std::string> refined;  // the refined parameters' values, as --set text
   fs::path dir;
   double seconds = 0;
   std::map<std::string, double> scalars;
-  std::vector<std::vector<double>> axis;  // rows of ire_axis.tsv (x, then the residual columns)
+  std::vector<std::vector<double>> axis;  // rows of residual_axis.tsv (x, then the residual columns)
   std::vector<std::string> axis_names;
   std::vector<std::string> regions;  // per axis row: away, surface, puncture or -
 };
@@ -107,7 +109,7 @@ void say(fmt::format_string<Args...> format, Args&&... args) {
 }
 
 void read_axis(Level& lv) {
-  std::istringstream in(read_text(lv.dir / "ire_axis.tsv"));
+  std::istringstream in(read_text(lv.dir / residual_report::axis_file));
   std::string line;
   while (std::getline(in, line)) {
     if (line.empty()) continue;
@@ -127,16 +129,81 @@ void read_axis(Level& lv) {
   }
 }
 
+/// A parameter that follows the resolution, and its value at level q as --set text.
+struct Refined {
+  std::string key;  // section.name
+  const ParamSpec* spec = nullptr;
+  ParamValue base;
+
+  std::string at(int q) const {
+    const bool doubles = spec->refinement == Refinement::doubles;
+    if (spec->type == ParamType::integer) {
+      const std::int64_t v = std::get<std::int64_t>(base);
+      if (doubles) return fmt::format("{}", v << q);  // bounded: the finest level is checked before any run
+      if (v % (std::int64_t{1} << q) != 0)
+        throw InputError(fmt::format("validate: {} = {} cannot be halved {} times exactly", key, v, q));
+      return fmt::format("{}", v >> q);
+    }
+    const double v = std::get<double>(base);
+    return fmt::format("{:.17g}", doubles ? std::ldexp(v, q) : std::ldexp(v, -q));
+  }
+};
+
+std::vector<Refined> refined_parameters(const Configuration& config, const std::string& parfile) {
+  std::vector<Refined> out;
+  bool spacing = false;
+  for (const PluginDecl* decl : config.decls)
+    for (const ParamSpec& spec : decl->params) {
+      if (spec.refinement == Refinement::none) continue;
+      out.push_back({decl->name + "." + spec.name, &spec, config.params.at(decl->name).values().at(spec.name)});
+      spacing = spacing || spec.refinement == Refinement::halves;
+    }
+  if (!spacing)
+    throw InputError(fmt::format("{}: validate needs a parameter that halves with the resolution (a grid spacing); no "
+                                 "plugin in plugins declares one",
+                                 parfile));
+  return out;
+}
+
+bool is_refined(const std::vector<Refined>& refined, const std::string& override_text) {
+  const std::string key = override_text.substr(0, override_text.find('='));
+  return std::any_of(refined.begin(), refined.end(), [&](const Refined& r) { return r.key == key; });
+}
+
+std::string describe(const Level& lv) {
+  std::string out;
+  for (const auto& [key, value] : lv.refined) out += (out.empty() ? "" : ", ") + key + " = " + value;
+  return out;
+}
+
 double order(double coarse, double fine) { return coarse > 0 && fine > 0 ? std::log2(coarse / fine) : std::nan(""); }
+
+/// The equations the evaluator reports (a residual_E_judged scalar each), by name; --only must name
+/// judged ones.
+std::vector<std::string> reported_equations(const Level& lv, const std::vector<std::string>& only) {
+  std::vector<std::string> equations;
+  const std::string judged_suffix = "_judged";
+  const std::size_t prefix = std::strlen(residual_report::prefix);
+  for (const auto& [key, value] : lv.scalars)
+    if (key.rfind(residual_report::prefix, 0) == 0 && key.size() > prefix + judged_suffix.size() &&
+        key.compare(key.size() - judged_suffix.size(), judged_suffix.size(), judged_suffix) == 0)
+      equations.push_back(key.substr(prefix, key.size() - prefix - judged_suffix.size()));
+  if (equations.empty())
+    throw RunFailure(fmt::format("validate: the run at {} reports no residual (no {}E{} scalar in {})", describe(lv),
+                                 residual_report::prefix, judged_suffix, (lv.dir / "summary.json").string()));
+  for (const std::string& e : only)
+    if (std::find(equations.begin(), equations.end(), e) == equations.end() ||
+        lv.scalars.at(residual_report::key(e, "judged")) == 0)
+      throw InputError(fmt::format("validate: --only {}: expected one of the equations the evaluator judges ({})", e,
+                                   fmt::join(equations, ", ")));
+  return equations;
+}
 
 }  // namespace
 
 int cmd_validate(const std::string& parfile, const CommonOptions& common, const ValidateOptions& opt) {
   if (opt.levels < 2) throw InputError(fmt::format("validate: --levels {}: expected at least 2", opt.levels));
   if (!(opt.threshold > 0)) throw InputError(fmt::format("validate: --threshold {}: expected a positive order", opt.threshold));
-  for (const std::string& e : opt.only)
-    if (e != "hamiltonian" && e != "momentum" && e != "lapse" && e != "shift")
-      throw InputError(fmt::format("validate: --only {}: expected hamiltonian, momentum, lapse or shift", e));
   // Each level doubles n: bounded so that n << (levels - 1) cannot overflow, and far beyond what
   // any machine holds (the finest level is checked below, memory included, before any run).
   if (opt.levels > max_validate_levels)
@@ -144,35 +211,33 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
                                  "one before)",
                                  opt.levels, max_validate_levels));
   PluginLoader loader(plugin_search_path(common.plugin_dirs));
-  // The file is read once (regular files only), with ire added when it is not listed; input errors,
-  // ire.* overrides included, surface here before any run.
+  // The file is read once (regular files only), with the --with plugins added; input errors, their
+  // parameters' included, surface here before any run.
   ParFile file = load_parfile(parfile);
-  if (std::find(file.plugins.begin(), file.plugins.end(), "ire") == file.plugins.end()) {
-    file.plugins.push_back("ire");
-    file.plugin_pos.push_back(TextPos{parfile, 0, 0});
-  }
+  for (const std::string& name : opt.with)
+    if (std::find(file.plugins.begin(), file.plugins.end(), name) == file.plugins.end()) {
+      file.plugins.push_back(name);
+      file.plugin_pos.push_back(TextPos{parfile, 0, 0});
+    }
   const Configuration config = configure(file, common.overrides, loader);
   check_parameters(config);
-  if (!config.params.count("grid"))
-    throw InputError(fmt::format("{}: validate needs the grid plugin (grid.n, grid.dx)", parfile));
-  const int n = static_cast<int>(config.params.at("grid").integer("n"));
-  const double dx = config.params.at("grid").real("dx");
-  const int exclude = static_cast<int>(config.params.at("ire").integer("exclude_cells"));
-  const int surface = static_cast<int>(config.params.at("ire").integer("surface_cells"));
+  bool evaluator = false;
+  for (const PluginDecl* decl : config.decls)
+    for (const std::string& cap : decl->implements) evaluator = evaluator || cap == residual_report::capability;
+  if (!evaluator)
+    throw InputError(fmt::format("{}: validate needs an independent residual evaluator, a plugin that implements '{}': "
+                                 "list it in plugins or name it with --with",
+                                 parfile, residual_report::capability));
+  const std::vector<Refined> refined = refined_parameters(config, parfile);
   const fs::path dir = opt.output.empty() ? fs::path("runs") / (fs::path(parfile).stem().string() + "_validate") : fs::path(opt.output);
   const std::string self = fs::read_symlink("/proc/self/exe").string();
   const auto level_args = [&](int q, const std::string& command, const fs::path& parfile_copy) {
-    // The excluded regions keep their size in length, not in points, as dx shrinks.
-    std::vector<std::string> args{self, command, parfile_copy.string(),
-                                  "--set", fmt::format("grid.n={}", static_cast<std::int64_t>(n) << q),
-                                  "--set", fmt::format("grid.dx={:.17g}", dx / (1 << q)),
-                                  "--set", fmt::format("ire.exclude_cells={}", exclude << q),
-                                  "--set", fmt::format("ire.surface_cells={}", surface << q),
-                                  "--set", fmt::format("ire.stride={}", 1 << q)};
+    // Every refined parameter follows the spacing: the grid's points, and the excluded regions,
+    // which keep their size in length, not in points, as dx shrinks.
+    std::vector<std::string> args{self, command, parfile_copy.string()};
+    for (const Refined& r : refined) args.insert(args.end(), {"--set", r.key + "=" + r.at(q)});
     for (const std::string& o : common.overrides)
-      if (o.rfind("grid.n=", 0) != 0 && o.rfind("grid.dx=", 0) != 0 && o.rfind("ire.exclude_cells=", 0) != 0 &&
-          o.rfind("ire.surface_cells=", 0) != 0 && o.rfind("ire.stride=", 0) != 0)
-        args.insert(args.end(), {"--set", o});
+      if (!is_refined(refined, o)) args.insert(args.end(), {"--set", o});
     for (const std::string& p : common.plugin_dirs) args.insert(args.end(), {"--plugin-path", p});
     return args;
   };
@@ -180,7 +245,7 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
   RunDirectory directory(dir, opt.force, "validate", {fs::path(parfile)});
   directory.record("parfile.yaml");
   write_file_atomic(dir / "parfile.yaml",
-                    resolved_parfile_yaml(config, "# The parameter file of bhnsid validate (ire added), resolved\n"));
+                    resolved_parfile_yaml(config, "# The parameter file of bhnsid validate (--with plugins added), resolved\n"));
   // The finest level is the largest: if it cannot run (grid.n beyond its range, memory), say so now,
   // in its own words, not after the coarser levels have run.
   {
@@ -195,55 +260,58 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
       const std::string prefix = "bhnsid: error: ";
       if (why.rfind(prefix, 0) == 0) why = why.substr(prefix.size());
       directory.abandon();  // bad input leaves no directory behind
-      throw InputError(fmt::format("validate: the finest level (n = {}) cannot run: {}", static_cast<std::int64_t>(n) << (opt.levels - 1), why));
+      Level finest;
+      for (const Refined& r : refined) finest.refined[r.key] = r.at(opt.levels - 1);
+      throw InputError(fmt::format("validate: the finest level ({}) cannot run: {}", describe(finest), why));
     }
   }
 
   std::vector<Level> levels(static_cast<std::size_t>(opt.levels));
+  std::vector<std::string> equations;
   for (int q = 0; q < opt.levels; ++q) {
     Level& lv = levels[static_cast<std::size_t>(q)];
-    lv.n = n << q;
-    lv.dx = dx / (1 << q);
+    for (const Refined& r : refined) lv.refined[r.key] = r.at(q);
     lv.dir = dir / fmt::format("level_{}", q);
     std::vector<std::string> args = level_args(q, "run", dir / "parfile.yaml");
     args.insert(args.begin() + 3, {"--output", lv.dir.string()});
     directory.record(fmt::format("level_{}", q));
     directory.record(fmt::format("level_{}.out", q));
-    say("validate: level {} of {}: n = {}, dx = {:.9g} ...\n", q + 1, opt.levels, lv.n, lv.dx);
+    say("validate: level {} of {}: {} ...\n", q + 1, opt.levels, describe(lv));
     const auto t0 = std::chrono::steady_clock::now();
     const int rc = spawn(args, dir / fmt::format("level_{}.out", q));
     lv.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (interrupt_signal() != 0)
-      throw Interrupted(fmt::format("validate: interrupted by {} during the run at n = {}; its state is in {}",
-                                    signal_name(interrupt_signal()), lv.n, lv.dir.string()));
+      throw Interrupted(fmt::format("validate: interrupted by {} during the run at {}; its state is in {}",
+                                    signal_name(interrupt_signal()), describe(lv), lv.dir.string()));
     if (rc != 0)
-      throw RunFailure(fmt::format("validate: the run at n = {}, dx = {:.9g} failed (exit {}); see {} and {}", lv.n, lv.dx, rc,
+      throw RunFailure(fmt::format("validate: the run at {} failed (exit {}); see {} and {}", describe(lv), rc,
                                    (dir / fmt::format("level_{}.out", q)).string(), (lv.dir / "log.txt").string()));
     const json summary = json::parse(read_text(lv.dir / "summary.json"));
     for (const auto& [key, value] : summary["scalars"].items())
       if (value.is_number()) lv.scalars[key] = value.get<double>();
     read_axis(lv);
     say("validate:   done in {:.1f} s\n", lv.seconds);
+    if (q == 0) equations = reported_equations(lv, opt.only);
   }
 
-  // Orders from the norms, per equation; the judgement uses the finest pair's L2 order.
-  const std::vector<std::string> equations{"hamiltonian", "momentum", "lapse", "shift", "bernoulli"};
   json out;
   out["parfile"] = parfile;
   out["threshold"] = opt.threshold;
-  for (const Level& lv : levels)
-    out["levels"].push_back({{"n", lv.n}, {"dx", lv.dx}, {"run_directory", lv.dir.string()}, {"seconds", lv.seconds}});
+  for (const Level& lv : levels) out["levels"].push_back({{"parameters", lv.refined}, {"run_directory", lv.dir.string()}, {"seconds", lv.seconds}});
   bool passed = true;
   say("\n{:<12} {:>10} {:>10} {:>10} {:>8} {:>8} {:>8}  {}\n", "equation", "L2 (dx)", "L2 (dx/2)", "L2 (dx/4)",
              "order", "order", "max ord", "verdict");
   for (const std::string& e : equations) {
-    if (!levels[0].scalars.count("ire_" + e + "_l2")) continue;
+    using residual_report::key;
+    if (!levels[0].scalars.count(key(e, "l2"))) continue;
     json eq;
     std::vector<double> l2, mx, sl2;
     for (const Level& lv : levels) {
-      l2.push_back(lv.scalars.at("ire_" + e + "_l2"));
-      mx.push_back(lv.scalars.at("ire_" + e + "_max"));
-      if (lv.scalars.count("ire_" + e + "_surface_l2")) sl2.push_back(lv.scalars.at("ire_" + e + "_surface_l2"));
+      if (!lv.scalars.count(key(e, "l2")) || !lv.scalars.count(key(e, "max")))
+        throw RunFailure(fmt::format("validate: the run at {} does not report {}", describe(lv), key(e, "l2")));
+      l2.push_back(lv.scalars.at(key(e, "l2")));
+      mx.push_back(lv.scalars.at(key(e, "max")));
+      if (lv.scalars.count(key(e, "surface_l2"))) sl2.push_back(lv.scalars.at(key(e, "surface_l2")));
     }
     std::vector<double> o2, omax, osurf;
     for (std::size_t q = 0; q + 1 < l2.size(); ++q) {
@@ -259,8 +327,8 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
       verdict = "exact (zero at every level)";
     } else if (!judged) {
       verdict = "reported (not in --only)";
-    } else if (e == "bernoulli") {
-      verdict = "reported (the modelled lapse: not expected to converge, physics-notes §7)";
+    } else if (levels[0].scalars.at(key(e, "judged")) == 0) {
+      verdict = "reported (the evaluator does not expect it to converge)";
     } else if (o2.back() >= opt.threshold) {
       verdict = "pass";
     } else {
@@ -283,13 +351,13 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
     if (!sl2.empty() && !exact)
       say("{:<12} surface band: L2 {:.3e} -> {:.3e}, order {:.2f}\n", "", sl2.front(), sl2.back(), osurf.back());
   }
-  // Pointwise: the residuals at the coarsest run's axis points (every run evaluates there: ire.stride),
+  // Pointwise: the residuals at the coarsest run's axis points (every run evaluates there),
   // times 4^q at level q.
   const Level& coarse = levels[0];
   for (const Level& lv : levels) {
     bool same = lv.axis.size() == coarse.axis.size();
     for (std::size_t i = 0; same && i < coarse.axis.size(); ++i) same = std::fabs(lv.axis[i][0] - coarse.axis[i][0]) <= 1e-9 * (1 + std::fabs(coarse.axis[i][0]));
-    if (!same) throw RunFailure(fmt::format("validate: the x-axis points of {} differ from the coarsest run's", (lv.dir / "ire_axis.tsv").string()));
+    if (!same) throw RunFailure(fmt::format("validate: the x-axis points of {} differ from the coarsest run's", (lv.dir / residual_report::axis_file).string()));
   }
   json axis;
   for (std::size_t c = 0; c < coarse.axis_names.size(); ++c) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <set>
+#include <stdexcept>
 
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/core/plugin.hpp"
@@ -34,6 +35,12 @@ ParamHandle& ParamHandle::at_most(double hi) { spec().max = hi; spec().max_open 
 ParamHandle& ParamHandle::less_than(double hi) { spec().max = hi; spec().max_open = true; return *this; }
 ParamHandle& ParamHandle::length(int n) { spec().length = n; return *this; }
 ParamHandle& ParamHandle::steerable() { spec().steerable = true; return *this; }
+ParamHandle& ParamHandle::refines(Refinement how) {
+  if (spec().type != ParamType::integer && spec().type != ParamType::real)
+    throw std::logic_error("ParamHandle::refines: only integer and real parameters follow the spacing");
+  spec().refinement = how;
+  return *this;
+}
 
 ScheduleHandle& ScheduleHandle::doc(std::string text) { decl_->schedule[index_].doc = std::move(text); return *this; }
 ScheduleHandle& ScheduleHandle::before(std::string full_name) {

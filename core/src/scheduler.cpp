@@ -23,6 +23,15 @@ const ScheduleEntry* find_entry(const std::vector<const PluginDecl*>& plugins, c
     for (const auto& e : decl->schedule)
       if (e.name == name) return &e;
   }
+  if (plugin_active) return nullptr;
+  // "capability.entry": the entry of the active plugin that implements the capability, so that a
+  // plugin orders itself against a role (hydro.outer_step) without naming the plugin that fills it.
+  for (const auto* decl : plugins) {
+    if (std::find(decl->implements.begin(), decl->implements.end(), plugin) == decl->implements.end()) continue;
+    plugin_active = true;
+    for (const auto& e : decl->schedule)
+      if (e.name == name) return &e;
+  }
   return nullptr;
 }
 

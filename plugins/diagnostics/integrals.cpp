@@ -38,50 +38,29 @@ Masses masses(const Grid& grid, const Inputs& in) {
   const double* chi = field(grid, fields::chi);
   const double* punc = field(grid, fields::puncture_phi);
   const double* aa = field(grid, fields::aa);
-  const double* eta = field(grid, fields::eta);
-  if (in.moving && !eta)
-    throw core::RunFailure("diagnostics: moving matter needs eta (the lapse plugin) for its Lorentz factor");
-  const MatterArrays mat = matter_arrays(grid, in.sigma, in.moving, 0);
+  const double* matter = in.matter ? field(grid, fields::matter_energy) : nullptr;
+  if (in.matter && !matter)
+    throw core::RunFailure("diagnostics: a fluid without the matter_energy field (rho_E); the hydro plugin registers it");
+  const double sigma2 = in.sigma * in.sigma;
   // Every point but the ghost plane is written below (integrate reads no ghost); uninitialised,
   // so that the pages are first touched by the parallel loop instead of a serial zero fill.
   const auto energy = std::make_unique_for_overwrite<double[]>(lv.size);
-  const auto rest = std::make_unique_for_overwrite<double[]>(in.matter ? lv.size : 0);
-  // Per row, the matter term selected where rho0 > 0 (not branched on) and the switches
-  // compile-time, so that the loop vectorises.
-  auto densities = [&](auto matter, auto moving) {
-    constexpr bool Matter = decltype(matter)::value, Moving = decltype(moving)::value;
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < lv.nz; ++k)
-      for (int j = 0; j < lv.ny; ++j) {
-        const std::ptrdiff_t p0 = lv.at(0, j, k);
-#pragma omp simd
-        for (std::ptrdiff_t p = p0; p < p0 + lv.nx; ++p) {
-          const double phi = (punc ? punc[p] : 0.0) + chi[p];
-          const double phi2 = phi * phi, phi4 = phi2 * phi2;
-          double e = aa ? aa[p] / (16.0 * std::numbers::pi * phi4 * phi2 * phi) : 0.0;
-          if constexpr (Matter) {
-            double lorentz2 = 1.0;
-            if constexpr (Moving)
-              lorentz2 = lorentz_squared(phi, eta[p], mat.coordinate_velocity(0, p), mat.coordinate_velocity(1, p),
-                                         mat.coordinate_velocity(2, p));
-            const bool in_matter = mat.rho0[p] > 0;
-            const double e_matter =
-                mat.sigma2 * phi4 * phi * matter_projections(mat.rho0[p], mat.press[p], mat.enthalpy[p], lorentz2).energy;
-            e += in_matter ? e_matter : 0.0;
-            rest[static_cast<std::size_t>(p)] = in_matter ? mat.rho0[p] * std::sqrt(lorentz2) * phi4 * phi2 : 0.0;
-          }
-          energy[static_cast<std::size_t>(p)] = e;
-        }
-      }
+  // Per row, the matter switch compile-time, so that the loop vectorises; rho_E is 0 outside the
+  // matter (the hydro plugin writes it so).
+  auto densities = [&](auto with_matter) {
+    for_stored_points(lv, [&](std::ptrdiff_t p) {
+      const double phi = (punc ? punc[p] : 0.0) + chi[p];
+      const double phi2 = phi * phi, phi4 = phi2 * phi2;
+      double e = aa ? aa[p] / (16.0 * std::numbers::pi * phi4 * phi2 * phi) : 0.0;
+      if constexpr (decltype(with_matter)::value) e += sigma2 * phi4 * phi * matter[p];
+      energy[static_cast<std::size_t>(p)] = e;
+    });
   };
-  if (!in.matter)
-    densities(std::false_type{}, std::false_type{});
-  else if (in.moving)
-    densities(std::true_type{}, std::true_type{});
+  if (matter)
+    densities(std::true_type{});
   else
-    densities(std::true_type{}, std::false_type{});
+    densities(std::false_type{});
   Masses m;
-  m.rest_mass = in.matter ? in.sigma * mat.sigma2 * grid.integrate(rest.get(), Parity{}, 0) : 0.0;
   m.adm_mass_volume = in.sigma * (in.bh_bare_mass + grid.integrate(energy.get(), Parity{}, 0));
   m.adm_mass_falloff = in.sigma * (in.bh_bare_mass + 2.0 * falloff_coefficient(grid, chi, in.centre));
   return m;

@@ -6,7 +6,10 @@
 #include "bhnsid/core/plugin.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
+#include "bhnsid/interfaces/tov_family.hpp"
+#include "bhnsid/core/errors.hpp"
 #include "axis.hpp"
+#include "binary.hpp"
 #include "integrals.hpp"
 #include "surface.hpp"
 
@@ -16,52 +19,100 @@ namespace {
 using core::Bin;
 using core::Context;
 
+/// The binary's quantities (binary.hpp): M_NS and M0/(M0)_max from the TOV family when there is
+/// one, J, E_b, E_b', Omega M0, J/M0^2 (physical units); what a run cannot give is left out.
+void binary_scalars(Context& ctx, const Grid& grid, const Fluid& fluid, const Puncture* puncture, double adm_mass,
+                    double rest_mass) {
+  const double sigma = fluid.sigma();
+  double j = matter_angular_momentum(grid, sigma);
+  double m_bh = 0, m_punc = 0;
+  if (puncture) {
+    j += sigma * sigma * puncture->position()[0] * puncture->momentum()[1];
+    m_bh = sigma * puncture->bare_mass();
+    m_punc = m_bh * grid.interpolate(grid.data(grid.field_id(fields::chi), 0, 0), Parity{}, 0, puncture->position());
+    ctx.set_scalar("bh_puncture_mass", m_punc);
+  }
+  ctx.set_scalar("angular_momentum", j);
+  ctx.set_scalar("omega_m0", fluid.omega_hat() / sigma * rest_mass);
+  ctx.set_scalar("j_over_m0sq", j / (rest_mass * rest_mass));
+  ctx.set_scalar("star_center_x", sigma * fluid.centre()[0]);
+  const auto* family = ctx.services().find<TovFamily>("tov_family");
+  if (!family) return;
+  ctx.set_scalar("rest_mass_fraction", rest_mass / family->maximum_rest_mass_star().rest_mass);
+  double m_ns = 0;
+  try {
+    m_ns = family->adm_mass_from_rest_mass(rest_mass);
+  } catch (const core::RunFailure& e) {
+    ctx.log().info("no M_NS, E_b: {}", e.what());  // M0 above the family's maximum
+    return;
+  }
+  ctx.set_scalar("ns_adm_mass", m_ns);
+  ctx.set_scalar("binding_energy", (adm_mass - m_bh - m_ns) / rest_mass);
+  if (puncture) ctx.set_scalar("binding_energy_puncture", (adm_mass - m_punc - m_ns) / rest_mass);
+  ctx.log().info("J = {:.9g}, Omega M0 = {:.6g}, J/M0^2 = {:.6g}, M_NS = {:.9g}, E_b = {:.6g}{}", j,
+                 fluid.omega_hat() / sigma * rest_mass, j / (rest_mass * rest_mass), m_ns,
+                 (adm_mass - m_bh - m_ns) / rest_mass,
+                 puncture ? fmt::format(", E_b' = {:.6g}", (adm_mass - m_punc - m_ns) / rest_mass) : std::string());
+}
+
 void declare(core::PluginBuilder& b) {
   b.require("grid");
   b.require("equation.hamiltonian");
   b.implements("diagnostics");
   b.memory([](const Context& ctx, core::MemoryEstimate& m) {
     if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
-      // The energy densities integrated for the masses: two finest-level arrays.
-      m.add(ctx.plugin(), "densities", fmt::format("two finest-level arrays at {}", layout->describe()),
-            2 * layout->field_bytes(core::Storage::finest_only));
+      // The energy density integrated for the ADM mass: one finest-level array.
+      m.add(ctx.plugin(), "densities", fmt::format("one finest-level array at {}", layout->describe()),
+            layout->field_bytes(core::Storage::finest_only));
     }
   });
 
   b.schedule(Bin::analysis, "masses", [](Context& ctx) {
-     const auto& grid = ctx.services().get<Grid>("grid");
+     auto& grid = ctx.services().get<Grid>("grid");
      const auto* fluid = ctx.services().find<Fluid>("hydro");
      const auto* puncture = ctx.services().find<Puncture>("puncture");
      Inputs in;
      in.sigma = fluid ? fluid->sigma() : 1.0;
      in.bh_bare_mass = puncture ? puncture->bare_mass() : 0.0;
-     in.centre = fluid ? fluid->centre() : puncture ? puncture->position() : std::array<double, 3>{};
-     in.moving = fluid && fluid->moving();
+     in.centre = falloff_centre(fluid, puncture);
      in.matter = fluid != nullptr;
+     // The projections of the final fields (the last sweep's may lag them by one sweep).
+     if (fluid) fluid->update_sources(grid, 0);
      const Masses m = masses(grid, in);
-     // With a net momentum (a single boosted hole) the AA source reaches beyond the cube like r^-4.
-     const double outside = puncture ? outside_aa_mass(grid, in.sigma, puncture->position()) : 0.0;
-     ctx.set_scalar("rest_mass", m.rest_mass);
+     const double rest_mass = fluid ? fluid->rest_mass() : 0.0;
+     // The AA source beyond the cube: like r^-4 with a net momentum (a single boosted hole), like r^-6
+     // once the momenta cancel (a binary); the net momentum is the faces' (surface.hpp).
+     SurfaceMomenta faces;
+     if (grid.has_field(fields::ahat)) faces = surface_momenta(grid, in.sigma);
+     const OutsideMass outside_parts =
+         puncture ? outside_aa_mass(grid, in.sigma, puncture->position(),
+                                    {faces.momentum_x / in.sigma, faces.momentum_y / in.sigma})
+                  : OutsideMass{};
+     const double outside = outside_parts.total();
+     ctx.set_scalar("rest_mass", rest_mass);
      ctx.set_scalar("adm_mass", m.adm_mass_volume + outside);
      ctx.set_scalar("adm_mass_inside", m.adm_mass_volume);
      ctx.set_scalar("adm_mass_outside", outside);
+     ctx.set_scalar("adm_mass_outside_net_momentum", outside_parts.net_momentum);
+     ctx.set_scalar("adm_mass_outside_remainder", outside_parts.remainder);
      ctx.set_scalar("adm_mass_falloff", m.adm_mass_falloff);
      ctx.log().info("M0 = {:.9g}, M_ADM = {:.9g} (volume {:.9g} + outside the cube {:.3g}), {:.9g} (1/r falloff at "
-                    "the faces)", m.rest_mass, m.adm_mass_volume + outside, m.adm_mass_volume, outside, m.adm_mass_falloff);
+                    "the faces)", rest_mass, m.adm_mass_volume + outside, m.adm_mass_volume, outside, m.adm_mass_falloff);
      if (puncture) {
        const double chi = grid.interpolate(grid.data(grid.field_id(fields::chi), 0, 0), Parity{}, 0, puncture->position());
        ctx.set_scalar("chi_puncture", chi);
        ctx.set_scalar("puncture_mass", in.sigma * puncture->bare_mass() * chi);
      }
      for (const auto& [key, value] : deviations(grid)) ctx.set_scalar(key, value);
+     if (fluid) binary_scalars(ctx, grid, *fluid, puncture, m.adm_mass_volume + outside, rest_mass);
      if (grid.has_field(fields::ahat)) {
-       const SurfaceMomenta s = surface_momenta(grid, in.sigma);
+       const SurfaceMomenta& s = faces;
        ctx.set_scalar("momentum_surface_x", s.momentum_x);
        ctx.set_scalar("momentum_surface_y", s.momentum_y);
        ctx.set_scalar("angular_momentum_z", s.angular_momentum_z);
        ctx.log().info("at the faces: P = ({:.9g}, {:.9g}), J_z = {:.9g}", s.momentum_x, s.momentum_y, s.angular_momentum_z);
      }
-   }).doc("max deviations from flat space; rest_mass, adm_mass (volume inside the cube + the Bowen-York AA outside it, also given apart as adm_mass_inside, adm_mass_outside), adm_mass_falloff (Robin coefficient of chi); with a puncture chi_puncture "
+   }).doc("max deviations from flat space; rest_mass, adm_mass (volume inside the cube + the Bowen-York AA outside it, also given apart as adm_mass_inside, adm_mass_outside = adm_mass_outside_net_momentum (r^-4) + adm_mass_outside_remainder (r^-6)), adm_mass_falloff (Robin coefficient of chi); with a puncture chi_puncture "
           "and puncture_mass = sigma Mhat chi(puncture); with Ahat the surface integrals momentum_surface_x/y and "
           "angular_momentum_z; physical units");
 

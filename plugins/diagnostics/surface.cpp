@@ -26,15 +26,28 @@ SurfaceMomenta surface_momenta(const Grid& grid, double sigma) {
   return {sigma * c * px, sigma * c * py, sigma * sigma * c * jz};
 }
 
-double outside_aa_mass(const Grid& grid, double sigma, const std::array<double, 3>& centre) {
+OutsideMass outside_aa_mass(const Grid& grid, double sigma, const std::array<double, 3>& centre,
+                            const std::array<double, 2>& net_momentum_hat) {
   const Level& lv = grid.finest();
   const double* aa = grid.data(grid.field_id(fields::aa), 0, 0);
-  double sum = 0;
+  const double pn2 = net_momentum_hat[0] * net_momentum_hat[0] + net_momentum_hat[1] * net_momentum_hat[1];
+  double net = 0, rest = 0;
   for_each_face_point(lv, [&](int axis, double sign, int i, int j, int k, double area) {
-    const double x[3] = {lv.x(i), lv.y(j), lv.z(k)};
-    sum += aa[lv.at(i, j, k)] * (x[axis] - centre[static_cast<std::size_t>(axis)]) * sign * area;
+    const double d[3] = {lv.x(i) - centre[0], lv.y(j) - centre[1], lv.z(k) - centre[2]};
+    const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    // The Bowen-York AA of the net momentum about the centre, 9 P^2 (1 + 2 cos^2 theta) / (2 r^4)
+    // (physics-notes §2.6), cos theta the angle between the point and P.
+    const double pd = net_momentum_hat[0] * d[0] + net_momentum_hat[1] * d[1];
+    const double cos2 = pn2 > 0 ? pd * pd / (pn2 * r2) : 0.0;
+    const double aa_net = 4.5 * pn2 * (1.0 + 2.0 * cos2) / (r2 * r2);
+    const double flux = d[axis] * sign * area;
+    net += aa_net * flux;
+    rest += (aa[lv.at(i, j, k)] - aa_net) * flux;
   });
-  return sigma * sum / (16.0 * std::numbers::pi);
+  const double c = sigma / (16.0 * std::numbers::pi);
+  // A part falling like r^-p leaves Int_face^inf r^(2-p) dr = r_face^(3-p)/(p-3) outside: p = 4 for
+  // the net momentum's, p = 6 for the rest (Ahat ~ r^-3 once the momenta cancel).
+  return {c * net, c * rest / 3.0};
 }
 
 }  // namespace bhnsid::diagnostics

@@ -17,11 +17,19 @@ struct SurfaceMomenta {
 /// O(1/r_c) from phi - 1 (which the matter integrals in the binary issue complement).
 SurfaceMomenta surface_momenta(const Grid& grid, double sigma);
 
-/// The part of M_ADM's volume integral outside the cube, sigma Int_outside phi^-7 AA/(16 pi): with a net
-/// momentum P the Bowen-York AA falls off only like r^-4 and that part is (15/8) P^2/r_c for a sphere,
-/// a first-order error in 1/r_c. Taking AA ~ A(n)/r^4 about `centre` beyond the faces and phi = 1:
-///   Int_outside A/r^4 d^3x = Int A(n)/r_face(n) dOmega = oint AA (x - centre).dS,
-/// a surface integral of the face values; what it leaves is O(P^2 M/r_c^2) and the faster-falling Zhat.
-double outside_aa_mass(const Grid& grid, double sigma, const std::array<double, 3>& centre);
+/// The part of M_ADM's volume integral outside the cube, sigma Int_outside phi^-7 AA/(16 pi), from the
+/// face values of AA (phi = 1 beyond the faces). A field AA ~ A(n)/r^p leaves
+///   Int_outside A/r^p d^3x = (1/(p-3)) oint AA (x - centre).dS.
+/// The far field is split: the Bowen-York AA of the net linear momentum P_net (measured at the faces)
+/// falls like r^-4 (a single boosted hole: (15/8) P^2/r_c, first order in 1/r_c); what remains, the
+/// whole AA of a binary with zero total momentum, falls like r^-6 (Ahat ~ r^-3), factor 1/3. The
+/// cross term (r^-5, factor 1/2) is counted with the rest: an error of O(P_net Q / r_c^2).
+struct OutsideMass {
+  double net_momentum = 0;  ///< the r^-4 part, from P_net
+  double remainder = 0;     ///< the r^-6 part
+  double total() const { return net_momentum + remainder; }
+};
+OutsideMass outside_aa_mass(const Grid& grid, double sigma, const std::array<double, 3>& centre,
+                            const std::array<double, 2>& net_momentum_hat);
 
 }  // namespace bhnsid::diagnostics

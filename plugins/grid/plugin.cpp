@@ -53,8 +53,13 @@ void declare(core::PluginBuilder& b) {
       .doc("intervals per side of the cube (n + 1 points); even, so that the origin and the axes are grid points")
       .default_value(std::int64_t{64})
       .at_least(2)
-      .at_most(4096);
-  b.real("dx").doc("grid spacing (hatted units); the cube is [-n dx/2, n dx/2]^3").default_value(0.06).greater_than(0);
+      .at_most(4096)
+      .refines(core::Refinement::doubles);
+  b.real("dx")
+      .doc("grid spacing (hatted units); the cube is [-n dx/2, n dx/2]^3")
+      .default_value(0.06)
+      .greater_than(0)
+      .refines(core::Refinement::halves);
   b.keyword("symmetry", {"none", "equatorial"})
       .doc("equatorial: store and compute z >= 0 only, parities from the fields' tensor kinds")
       .default_value(std::string("equatorial"));

@@ -13,17 +13,14 @@ using core::TensorKind;
 namespace {
 
 const std::vector<TensorKind> scalar{TensorKind::scalar};
-const std::vector<TensorKind> vector{TensorKind::vector_x, TensorKind::vector_y, TensorKind::vector_z};
 
-/// Calls fn(std::bool_constant<moving>{}, std::bool_constant<matter>{}) (moving implies matter).
+/// Calls fn(std::bool_constant<matter>{}).
 template <class Fn>
-void with_motion(bool matter, bool moving, Fn&& fn) {
-  if (moving)
-    fn(std::true_type{}, std::true_type{});
-  else if (matter)
-    fn(std::false_type{}, std::true_type{});
+void with_matter(bool matter, Fn&& fn) {
+  if (matter)
+    fn(std::true_type{});
   else
-    fn(std::false_type{}, std::false_type{});
+    fn(std::false_type{});
 }
 
 }  // namespace
@@ -33,10 +30,6 @@ HamiltonianEquation::HamiltonianEquation(Grid& grid, const Fluid* fluid, const P
   chi_ = grid.add_field(fields::chi, scalar);
   puncture_phi_ = grid.add_field(fields::puncture_phi, scalar);
   aa_ = grid.add_field(fields::aa, scalar);
-  // The fluid fields are registered here too (zero without a hydro plugin), so that vacuum runs read
-  // the same arrays; registering an existing field again returns it.
-  for (const char* name : {fields::rho0, fields::press, fields::enthalpy}) grid.add_field(name, scalar);
-  grid.add_field(fields::fluid_velocity, vector, core::TimeParity::odd);
 }
 
 OuterBoundary HamiltonianEquation::boundary() const {
@@ -45,10 +38,9 @@ OuterBoundary HamiltonianEquation::boundary() const {
 
 std::vector<std::string> HamiltonianEquation::coefficients() const {
   // aa_hat is not restricted: its owner (momentum) fills every level, the Bowen-York part analytically.
-  // In vacuum the fluid arrays stay zero and are not read: restricting them would fault in their
-  // pages for nothing.
+  // The projections are not either: the hydro plugin forms them on each level from its restricted inputs.
   if (!fluid_) return {};
-  return {fields::rho0, fields::press, fields::enthalpy, fields::fluid_velocity};
+  return fluid_->source_inputs();
 }
 
 std::string HamiltonianEquation::failure_hint() const {
@@ -63,13 +55,8 @@ Sources HamiltonianEquation::sources(int level) const {
   Sources s;
   s.puncture_phi = grid_.data(puncture_phi_, 0, level);
   s.aa = grid_.data(aa_, 0, level);
-  s.matter = matter_arrays(grid_, fluid_, level);
+  if (fluid_) s.matter = matter_sources(grid_, *fluid_, level);
   s.matter_scale = matter_scale_;
-  if (moving()) {
-    if (!grid_.has_field(fields::eta))
-      throw core::RunFailure("hamiltonian: moving matter needs the lapse (eta) for its Lorentz factor; add the lapse plugin");
-    s.eta = grid_.data(grid_.field_id(fields::eta), 0, level);
-  }
   return s;
 }
 
@@ -78,9 +65,9 @@ void HamiltonianEquation::residual(const RelaxArgs& args, double* const* out) co
   const double* chi = grid_.data(chi_, 0, l);
   const double* rhs = args.rhs ? args.rhs[0] : nullptr;
   const Sources s = sources(l);
-  with_motion(fluid_ != nullptr, moving(), [&](auto m, auto matter) {
+  with_matter(fluid_ != nullptr, [&](auto matter) {
     stencil::scalar_residual_any(grid_.level(l), chi, rhs, args.fixed, out[0],
-                                 HamiltonianTerm<decltype(m)::value, decltype(matter)::value>{s});
+                                 HamiltonianTerm<decltype(matter)::value>{s});
   });
 }
 
@@ -90,9 +77,9 @@ void HamiltonianEquation::relax(const RelaxArgs& args) const {
   const double* rhs = args.rhs ? args.rhs[0] : nullptr;
   const Sources s = sources(l);
   const stencil::Mirror mirror = [this, l] { grid_.fill_ghosts(chi_, l); };
-  with_motion(fluid_ != nullptr, moving(), [&](auto m, auto matter) {
+  with_matter(fluid_ != nullptr, [&](auto matter) {
     stencil::scalar_relax_any(grid_.level(l), chi, rhs, args.fixed, args.omega, mirror,
-                              HamiltonianTerm<decltype(m)::value, decltype(matter)::value>{s});
+                              HamiltonianTerm<decltype(matter)::value>{s});
   });
 }
 

@@ -31,7 +31,6 @@ void declare(core::PluginBuilder& b) {
       layout->estimate_field(m, ctx.plugin(), fields::chi, 1);
       layout->estimate_field(m, ctx.plugin(), fields::puncture_phi, 1);
       layout->estimate_field(m, ctx.plugin(), fields::aa, 1);
-      layout->estimate_fields(m, ctx.plugin(), fields::fluid_sizes);
     }
   });
 
@@ -49,7 +48,7 @@ void declare(core::PluginBuilder& b) {
      ctx.publish<EllipticEquation>("equation.hamiltonian", state->equation);
      ctx.log().info("Hamiltonian constraint for chi: {}, {}", fluid ? "with matter" : "vacuum",
                     puncture ? "with a puncture" : "no black hole");
-   }).doc("register chi, puncture_phi, aa_hat (and the fluid fields), publish the equation");
+   }).doc("register chi, puncture_phi, aa_hat, publish the equation");
 
   b.schedule(Bin::initial, "initial_data", [](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");

@@ -74,3 +74,95 @@ NewtonResult solve_sigma_bernoulli(const std::vector<AxisPoint>& points, const A
 }
 
 }  // namespace bhnsid::hydro_corotating
+
+namespace bhnsid::hydro_corotating {
+
+namespace {
+
+struct OrbitResidual {
+  double f[3];
+  double dfds[3];
+  double dfdw[3];
+};
+
+}  // namespace
+
+OrbitResult solve_sigma_omega_bernoulli(const std::vector<OrbitPoint>& points, const FieldModel& model, double sigma_old,
+                                        double omega_start, double c_start) {
+  if (points.size() != 3) throw core::RunFailure("hydro_corotating: the corotating Newton solve takes three axis points");
+  if (!(omega_start > 0)) throw core::RunFailure(fmt::format("hydro_corotating: the Newton solve starts at Omegahat = {} <= 0", omega_start));
+  const ModelValues at_old = model(sigma_old);
+  // F_P and its derivatives at (s, w, c); the model's change from sigma_old shifts alpha and phi.
+  auto evaluate = [&](double s, double w, double c) {
+    const double ds = 1e-6 * s;
+    const ModelValues m = model(s), mp = model(s + ds), mm = model(s - ds);
+    OrbitResidual r;
+    for (std::size_t p = 0; p < 3; ++p) {
+      const OrbitPoint& q = points[p];
+      const double h2 = q.enthalpy * q.enthalpy;
+      auto f_of = [&](const ModelValues& v, double ww) {
+        const double a = q.alpha + v.alpha[p] - at_old.alpha[p], ph = q.phi + v.phi[p] - at_old.phi[p];
+        const double u = q.beta_y + q.x * ww, ph2 = ph * ph;
+        return h2 * (a * a - ph2 * ph2 * u * u);
+      };
+      const double ph = q.phi + m.phi[p] - at_old.phi[p], ph2 = ph * ph;
+      r.f[p] = f_of(m, w) - c * c;
+      r.dfds[p] = (f_of(mp, w) - f_of(mm, w)) / (2 * ds);
+      r.dfdw[p] = -2.0 * h2 * ph2 * ph2 * (q.beta_y + q.x * w) * q.x;
+    }
+    return r;
+  };
+  double s = sigma_old, w = omega_start, c = c_start;
+  OrbitResidual r = evaluate(s, w, c);
+  for (int it = 1; it <= 50; ++it) {
+    // J dq = -F with J = [dF/ds, dF/dw, -2c] row by row; Cramer's rule on the 3 x 3 system.
+    const double J[3][3] = {{r.dfds[0], r.dfdw[0], -2 * c}, {r.dfds[1], r.dfdw[1], -2 * c}, {r.dfds[2], r.dfdw[2], -2 * c}};
+    auto det3 = [](const double m[3][3]) {
+      return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+             m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    };
+    const double det = det3(J);
+    if (!(std::fabs(det) > 0) || !std::isfinite(det))
+      throw core::RunFailure(fmt::format("hydro_corotating: the (sigma, Omegahat, C_B) Newton matrix is singular at "
+                                         "sigma = {}, Omegahat = {}, C_B = {}",
+                                         s, w, c));
+    double dq[3];
+    for (int col = 0; col < 3; ++col) {
+      double m[3][3];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) m[i][j] = j == col ? -r.f[i] : J[i][j];
+      dq[col] = det3(m) / det;
+    }
+    double lambda = 1;
+    for (int halving = 0;; ++halving) {
+      const double ts = s + lambda * dq[0], tw = w + lambda * dq[1], tc = c + lambda * dq[2];
+      bool accepted = false;
+      if (tw > 0) {
+        try {
+          const OrbitResidual trial = evaluate(ts, tw, tc);
+          s = ts, w = tw, c = tc, r = trial;
+          accepted = true;
+        } catch (const core::RunFailure& fold) {
+          if (halving == 30)
+            throw core::RunFailure(fmt::format("hydro_corotating: no sigma-model solution near sigma = {}: {}", s, fold.what()));
+        }
+      }
+      if (accepted) break;
+      if (halving == 30)
+        throw core::RunFailure(fmt::format("hydro_corotating: the Newton step leaves Omegahat > 0 only at a vanishing "
+                                           "length (sigma = {}, Omegahat = {})",
+                                           s, w));
+      lambda *= 0.5;
+    }
+    if (!(c > 0))
+      throw core::RunFailure(fmt::format("hydro_corotating: the Newton solve gave C_B = {} <= 0 at sigma = {}", c, s));
+    if (std::fabs(lambda * dq[0]) <= 1e-12 * std::fabs(s) && std::fabs(lambda * dq[1]) <= 1e-12 * std::fabs(w) &&
+        std::fabs(lambda * dq[2]) <= 1e-12 * c)
+      return {s, w, c, it};
+  }
+  throw core::RunFailure(fmt::format("hydro_corotating: the (sigma, Omegahat, C_B) Newton solve did not converge in 50 "
+                                     "iterations (last sigma = {}, Omegahat = {}, C_B = {})",
+                                     s, w, c));
+}
+
+}  // namespace bhnsid::hydro_corotating

@@ -35,10 +35,10 @@ StarSettings settings_from(const core::ParamSection& p) {
 }
 
 std::string history_table(const Star& star) {
-  std::string out = "# iteration\tsigma\tbernoulli_constant\tx_c\tchange\tmatter_points\n";
+  std::string out = "# iteration\tsigma\tomega_hat\tbernoulli_constant\tx_c\tchange\tmatter_points\n";
   for (const StepReport& r : star.history())
-    out += fmt::format("{}\t{:.15e}\t{:.15e}\t{:.15e}\t{:.6e}\t{}\n", r.iteration, r.after.sigma, r.after.bernoulli,
-                       r.after.x_c, r.change, r.matter_points);
+    out += fmt::format("{}\t{:.15e}\t{:.15e}\t{:.15e}\t{:.15e}\t{:.6e}\t{}\n", r.iteration, r.after.sigma,
+                       r.after.omega_hat, r.after.bernoulli, r.after.x_c, r.change, r.matter_points);
   return out;
 }
 
@@ -82,7 +82,8 @@ void declare(core::PluginBuilder& b) {
      auto& grid = ctx.services().get<Grid>("grid");
      const auto& eos = ctx.services().get<Eos>("eos");
      const auto& family = ctx.services().get<TovFamily>("tov_family");
-     state->star = std::make_unique<Star>(grid, eos, family, settings_from(ctx.params()), state->fluid);
+     state->star = std::make_unique<Star>(grid, eos, family, settings_from(ctx.params()), state->fluid,
+                                         ctx.services().find<Puncture>("puncture"));
      const StarConstants& c = state->fluid->constants;
      ctx.log().info("static star, {}: rho_max = {}, xhat_C = {}, Rhat = {}, initial sigma = {:.9g}, C_B = {:.9g}",
                     eos.describe(), ctx.params().real("rho_max"), c.x_c, state->star->rhat_star(), c.sigma, c.bernoulli);
@@ -99,8 +100,9 @@ void declare(core::PluginBuilder& b) {
 
   b.schedule(Bin::update, "outer_step", [state](Context& ctx) {
      const StepReport r = state->star->step();
-     ctx.log().info("outer step {}: sigma = {:.12g}, C_B = {:.12g}, xhat_C = {:.6g}, change {:.3e}{}", r.iteration,
-                    r.after.sigma, r.after.bernoulli, r.after.x_c, r.change, r.converged ? " (converged)" : "");
+     ctx.log().info("outer step {}: sigma = {:.12g}, Omegahat = {:.9g}, C_B = {:.12g}, xhat_C = {:.6g}, change {:.3e}{}",
+                    r.iteration, r.after.sigma, r.after.omega_hat, r.after.bernoulli, r.after.x_c, r.change,
+                    r.converged ? " (converged)" : "");
    }).doc("Newton solve for (sigma, C_B) with the TOV sigma-model, Bernoulli reset of rho0, flood fill");
 
   b.check("star_converged", [state](Context&) {
@@ -114,6 +116,10 @@ void declare(core::PluginBuilder& b) {
      ctx.set_scalar("sigma", c.sigma);
      ctx.set_scalar("bernoulli_constant", c.bernoulli);
      ctx.set_scalar("x_c", c.x_c);
+     ctx.set_scalar("omega_hat", c.omega_hat);
+     ctx.set_scalar("star_center_x_hat", c.x_c);
+     ctx.set_scalar("rho_max", ctx.params().real("rho_max"));
+     ctx.set_scalar("x_a", ctx.params().real("x_a"));
      ctx.set_scalar("outer_iterations", static_cast<double>(state->star->history().size()));
    }).doc("sigma, bernoulli_constant, x_c, outer_iterations");
 

@@ -13,24 +13,49 @@ namespace bhnsid::hydro_corotating {
 
 using core::RunFailure;
 
-Star::Star(Grid& grid, const Eos& eos, const TovFamily& family, StarSettings settings, std::shared_ptr<StarFluid> fluid)
-    : grid_(grid), eos_(eos), family_(family), settings_(settings), fluid_(std::move(fluid)) {
-  const std::vector<core::TensorKind> scalar{core::TensorKind::scalar};
-  rho0_ = grid.add_field(fields::rho0, scalar);
-  press_ = grid.add_field(fields::press, scalar);
-  enthalpy_ = grid.add_field(fields::enthalpy, scalar);
+Star::Star(Grid& grid, const Eos& eos, const TovFamily& family, StarSettings settings, std::shared_ptr<StarFluid> fluid,
+           const Puncture* hole)
+    : grid_(grid), eos_(eos), family_(family), settings_(settings), fluid_(std::move(fluid)), hole_(hole) {
+  fluid_->attach(grid);
+  rho0_ = grid.field_id(fields::rho0);
+  press_ = grid.field_id(fields::press);
+  enthalpy_ = grid.field_id(fields::enthalpy);
   chi_ = grid.field_id(fields::chi);
   eta_ = grid.field_id(fields::eta);
   puncture_phi_ = grid.field_id(fields::puncture_phi);
   tov_ = family.star(settings.rho_max);
+  fluid_->initial_mass = tov_.rest_mass;
   fluid_->constants.x_c = 0.5 * (1.0 + settings.x_a);
   fluid_->robin_centre = fluid_->constants.x_c;
   fluid_->constants.sigma = settings.sigma_guess > 0 ? settings.sigma_guess : tov_.radius_isotropic / rhat_star();
   fluid_->constants.bernoulli = eos.enthalpy(settings.rho_max) * tov_.lapse_center;
 }
 
+double Star::hole_delta() const {
+  if (!hole_ || !(hole_->bare_mass() > 0)) return 0.0;
+  const double d = fluid_->constants.x_c - hole_->position()[0];
+  return 0.5 * hole_->bare_mass() / d;
+}
+
+double Star::model_sigma(double sigma) const {
+  const double g = 1.0 + hole_delta();
+  return sigma * g * g;
+}
+
+double Star::kepler_omega() const {
+  const StarConstants& c = fluid_->constants;
+  const double m_ns = family_.adm_mass_from_rest_mass(fluid_->rest_mass()) / c.sigma;
+  const double d = c.x_c - hole_->position()[0];
+  return std::sqrt((hole_->bare_mass() + m_ns) / (d * d * d));
+}
+
 void Star::set_initial() {
   const Level& lv = grid_.finest();
+  // The hole (placed at SETUP) shrinks the star's coordinate size: sigma_0 = R_iso/(Rhat phi_ext^2).
+  if (hole_ && settings_.sigma_guess == 0) {
+    const double g = 1.0 + hole_delta();
+    fluid_->constants.sigma /= g * g;
+  }
   // The TOV star placed on hatted radius Rhat whatever the initial sigma (physics-notes §4.7): a
   // sigma_guess away from R_iso/Rhat then starts from the same density with other field constants.
   const double scale = tov_.radius_isotropic / rhat_star(), x_c = fluid_->constants.x_c;
@@ -84,6 +109,17 @@ std::vector<double> lapse_field(Grid& grid, int chi, int eta, int puncture_phi) 
   return alpha;
 }
 
+/// phi = puncture_phi + chi on the finest level, ghosts filled, for interpolation.
+std::vector<double> conformal_factor_field(Grid& grid, int chi, int puncture_phi) {
+  const Level& lv = grid.finest();
+  std::vector<double> phi(lv.size, 1.0);
+  const double* c = grid.data(chi, 0, 0);
+  const double* b = grid.data(puncture_phi, 0, 0);
+  for (std::size_t p = 0; p < lv.size; ++p) phi[p] = b[p] + c[p];
+  grid.fill_ghosts(phi.data(), Parity{}, 0);
+  return phi;
+}
+
 }  // namespace
 
 StepReport Star::step() {
@@ -94,37 +130,80 @@ StepReport Star::step() {
   report.after = now;
   if (!settings_.iterate) {
     report.converged = true;
+    fluid_->converged = true;
     history_.push_back(report);
     return report;
   }
   const std::vector<double> alpha = lapse_field(grid_, chi_, eta_, puncture_phi_);
-  const double rhat = rhat_star();
-  // The centre (h = h_max) and the surface point xhat = 1 (h = 1); for a static star xhat_A is
-  // equivalent to xhat = 1 by symmetry, so two points fix (sigma, C_B) (physics-notes §9 T1).
-  std::vector<AxisPoint> points(2);
-  points[0] = {0.0, grid_.interpolate(alpha.data(), Parity{}, 0, {now.x_c, 0, 0}), eos_.enthalpy(settings_.rho_max)};
-  points[1] = {1.0 - now.x_c, grid_.interpolate(alpha.data(), Parity{}, 0, {1.0, 0, 0}), 1.0};
-  const AlphaModel model = [&](double s) {
-    const FrozenProfileSolution m = family_.frozen_profile(settings_.rho_max, rhat, s);
-    return std::vector<double>{m.alpha_at(points[0].rhat), m.alpha_at(points[1].rhat)};
-  };
-  const NewtonResult solved = solve_sigma_bernoulli(points, model, now.sigma);
+  const double rhat = rhat_star(), h_max = eos_.enthalpy(settings_.rho_max);
+  auto at = [&](const std::vector<double>& f, double x) { return grid_.interpolate(f.data(), Parity{}, 0, {x, 0, 0}); };
+  double omega = 0;
+  struct Solved {
+    double sigma, bernoulli;
+  } solved{};
+  if (!hole_) {
+    // The centre (h = h_max) and the surface point xhat = 1 (h = 1); without a hole xhat_A is
+    // equivalent to xhat = 1 by symmetry and Omegahat = 0, so two points fix (sigma, C_B) (§9 T1).
+    std::vector<AxisPoint> points(2);
+    points[0] = {0.0, at(alpha, now.x_c), h_max};
+    points[1] = {1.0 - now.x_c, at(alpha, 1.0), 1.0};
+    const AlphaModel model = [&](double s) {
+      const FrozenProfileSolution m = family_.frozen_profile(settings_.rho_max, rhat, s);
+      return std::vector<double>{m.alpha_at(points[0].rhat), m.alpha_at(points[1].rhat)};
+    };
+    const NewtonResult r = solve_sigma_bernoulli(points, model, now.sigma);
+    solved = {r.sigma, r.bernoulli};
+  } else {
+    const std::vector<double> phi = conformal_factor_field(grid_, chi_, puncture_phi_);
+    std::vector<double> beta_y(grid_.finest().size, 0.0);
+    if (grid_.has_field(fields::shift)) {
+      const double* b = grid_.data(grid_.field_id(fields::shift), 1, 0);
+      std::copy(b, b + beta_y.size(), beta_y.begin());
+    }
+    const double xs[3] = {1.0, settings_.x_a, now.x_c};
+    std::vector<OrbitPoint> points(3);
+    for (int p = 0; p < 3; ++p)
+      points[static_cast<std::size_t>(p)] = {xs[p], std::fabs(xs[p] - now.x_c), at(alpha, xs[p]), at(phi, xs[p]),
+                                             at(beta_y, xs[p]), p == 2 ? h_max : 1.0};
+    const FieldModel model = [&](double s) {
+      const FrozenProfileSolution m = family_.frozen_profile(settings_.rho_max, rhat, model_sigma(s));
+      ModelValues v;
+      for (const OrbitPoint& q : points) {
+        v.alpha.push_back(m.alpha_at(q.rhat));
+        v.phi.push_back(m.phi_at(q.rhat));
+      }
+      return v;
+    };
+    const double omega_start = now.omega_hat > 0 ? now.omega_hat : kepler_omega();
+    const OrbitResult r = solve_sigma_omega_bernoulli(points, model, now.sigma, omega_start, now.bernoulli);
+    solved = {r.sigma, r.bernoulli};
+    omega = r.omega_hat;
+  }
   report.after.sigma = solved.sigma;
   report.after.bernoulli = solved.bernoulli;
+  report.after.omega_hat = omega;
   report.change = std::max(std::fabs(solved.sigma / now.sigma - 1), std::fabs(solved.bernoulli / now.bernoulli - 1));
+  if (hole_ && now.omega_hat > 0) report.change = std::max(report.change, std::fabs(omega / now.omega_hat - 1));
+  if (hole_ && now.omega_hat == 0) report.change = std::max(report.change, 1.0);  // the first step sets Omegahat
   // Converged: keep the density the fields were just solved with, so the output is consistent;
   // the Bernoulli equation then holds to about the tolerance (physics-notes §4.2).
-  if (report.change < settings_.tolerance && report.iteration > 1) {
+  // M0 moves with sigma and the density: the last reset's change of M0 must have settled too (§4.2).
+  if (std::max(report.change, m0_change_) < settings_.tolerance && report.iteration > 1) {
     report.converged = true;
+    fluid_->converged = true;
     report.after = now;
     report.matter_points = -1;
     history_.push_back(report);
     return report;
   }
+  const double m0_before = fluid_->rest_mass();
   report.matter_points = bernoulli_reset(report.after);
   now.sigma = report.after.sigma;
   now.bernoulli = report.after.bernoulli;
+  now.omega_hat = report.after.omega_hat;
   now.x_c = axis_maximum();
+  m0_change_ = m0_before > 0 ? std::fabs(fluid_->rest_mass() / m0_before - 1) : 1.0;
+  report.change = std::max(report.change, m0_change_);
   report.after = now;
   history_.push_back(report);
   return report;
@@ -134,26 +213,49 @@ int Star::bernoulli_reset(const StarConstants& next) {
   const Level& lv = grid_.finest();
   const StarConstants& now = fluid_->constants;
   const double rhat = rhat_star();
-  const FrozenProfileSolution model_new = family_.frozen_profile(settings_.rho_max, rhat, next.sigma);
-  const FrozenProfileSolution model_old = family_.frozen_profile(settings_.rho_max, rhat, now.sigma);
+  const FrozenProfileSolution model_new = family_.frozen_profile(settings_.rho_max, rhat, model_sigma(next.sigma));
+  const FrozenProfileSolution model_old = family_.frozen_profile(settings_.rho_max, rhat, model_sigma(now.sigma));
   const std::vector<double> alpha = lapse_field(grid_, chi_, eta_, puncture_phi_);
-  // Enthalpy from h alpha~ = C_B with the sigma-modelled lapse (§4.8); 0 where there is no matter.
+  const std::vector<double> phi = conformal_factor_field(grid_, chi_, puncture_phi_);
+  const double* beta[3] = {nullptr, nullptr, nullptr};
+  if (grid_.has_field(fields::shift))
+    for (int c = 0; c < 3; ++c) beta[c] = grid_.data(grid_.field_id(fields::shift), c, 0);
+  // h from h sqrt(alpha~^2 - phi~^4 |beta + Omegahat xi|^2) = C_B with the sigma-modelled alpha~ and
+  // phi~ (§3, §4.8); arg <= 0 (near the hole, beyond the light cylinder) is marked h = -1.
   std::vector<double> h(lv.size, 0.0);
+  const double w = next.omega_hat;
   for (int k = 0; k < lv.nz; ++k)
     for (int j = 0; j < lv.ny; ++j)
       for (int i = 0; i < lv.nx; ++i) {
         const std::ptrdiff_t p = lv.at(i, j, k);
         const double r = std::hypot(lv.x(i) - now.x_c, lv.y(j), lv.z(k));
         const double a = alpha[p] + model_new.alpha_at(r) - model_old.alpha_at(r);
-        h[p] = a > 0 ? next.bernoulli / a : 0.0;
+        const double ph = phi[p] + model_new.phi_at(r) - model_old.phi_at(r), ph2 = ph * ph;
+        double u2 = 0;
+        const double v[3] = {-w * lv.y(j), w * lv.x(i), 0.0};
+        for (int c = 0; c < 3; ++c) {
+          const double u = v[c] + (beta[c] ? beta[c][p] : 0.0);
+          u2 += u * u;
+        }
+        const double arg = a * a - ph2 * ph2 * u2;
+        h[p] = a > 0 && arg > 0 ? next.bernoulli / std::sqrt(arg) : -1.0;
       }
   // The star is the 6-connected component of {h > 1} containing the point nearest xhat_C (§3).
   const int i0 = static_cast<int>(std::lround((now.x_c - lv.origin[0]) / lv.dx));
   const int j0 = lv.n / 2, k0 = lv.z_symmetry ? 0 : lv.n / 2;
   if (!(h[lv.at(i0, j0, k0)] > 1))
     throw RunFailure(fmt::format("hydro_corotating: the Bernoulli reset leaves no matter at the centre xhat_C = {} "
-                                 "(h = {} there, sigma = {}, C_B = {})",
-                                 now.x_c, h[lv.at(i0, j0, k0)], next.sigma, next.bernoulli));
+                                 "(h = {} there, sigma = {}, Omegahat = {}, C_B = {})",
+                                 now.x_c, h[lv.at(i0, j0, k0)], next.sigma, next.omega_hat, next.bernoulli));
+  int excision = -1;
+  if (hole_) {
+    try {
+      excision = grid_.mask_id(fields::excision_mask);
+    } catch (const std::exception&) {
+      excision = -1;  // no shift equation: no cube
+    }
+  }
+  const std::uint8_t* cube = excision >= 0 ? grid_.mask(excision, 0) : nullptr;
   std::vector<std::uint8_t> in_star(lv.size, 0);
   std::vector<std::array<int, 3>> todo{{i0, j0, k0}};
   in_star[lv.at(i0, j0, k0)] = 1;
@@ -162,14 +264,29 @@ int Star::bernoulli_reset(const StarConstants& next) {
     const auto [i, j, k] = todo.back();
     todo.pop_back();
     ++count;
+    const std::ptrdiff_t at = lv.at(i, j, k);
     if (lv.on_outer_face(i, j, k))
       throw RunFailure(fmt::format("hydro_corotating: the star reaches the outer boundary at ({}, {}, {}); the grid is "
                                    "too small or sigma = {} is far too large",
                                    lv.x(i), lv.y(j), lv.z(k), next.sigma));
+    if (cube && cube[at])
+      throw RunFailure(fmt::format("hydro_corotating: Roche limit / mass shedding: the star reaches the black hole's "
+                                   "excision cube at ({}, {}, {}) (sigma = {}, Omegahat = {}, C_B = {})",
+                                   lv.x(i), lv.y(j), lv.z(k), next.sigma, next.omega_hat, next.bernoulli));
+    if (hole_ && j == j0 && k == k0 && lv.x(i) < settings_.x_a - lv.dx)
+      throw RunFailure(fmt::format("hydro_corotating: Roche lobe overflow: the star extends along the axis to x = {}, "
+                                   "past xhat_A = {} towards the hole (sigma = {}, Omegahat = {}, C_B = {})",
+                                   lv.x(i), settings_.x_a, next.sigma, next.omega_hat, next.bernoulli));
     const int nb[6][3] = {{i - 1, j, k}, {i + 1, j, k}, {i, j - 1, k}, {i, j + 1, k}, {i, j, k - 1}, {i, j, k + 1}};
     for (const auto& q : nb) {
       if (q[2] < 0) continue;  // the mirror image of a stored point
       const std::ptrdiff_t p = lv.at(q[0], q[1], q[2]);
+      // A point of the star next to one where the Bernoulli argument is negative: the star's
+      // surface would be where the modelled lapse vanishes (the hole, the light cylinder).
+      if (h[p] < 0)
+        throw RunFailure(fmt::format("hydro_corotating: the Bernoulli argument alpha^2 - phi^4 |beta + Omegahat xi|^2 "
+                                     "is negative next to the star at ({}, {}, {}) (sigma = {}, Omegahat = {})",
+                                     lv.x(q[0]), lv.y(q[1]), lv.z(q[2]), next.sigma, next.omega_hat));
       if (!in_star[p] && h[p] > 1) {
         in_star[p] = 1;
         todo.push_back({q[0], q[1], q[2]});

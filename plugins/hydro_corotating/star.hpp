@@ -2,8 +2,11 @@
 // The corotating star of the hydro_corotating plugin: its constants (sigma, C_B, x_C), the fluid
 // fields on the grid, and the outer-iteration step (physics-notes §4.2): read the fields at the
 // star's axis points, Newton-solve for (sigma, C_B) with the TOV sigma-model, reset rho0 by the
-// Bernoulli equation with the modelled fields, flood-fill the star. This form is the static
-// limit (Omegahat = 0, no black hole, 2-point solve); the binary adds Omega and the third point.
+// Bernoulli equation with the modelled fields, flood-fill the star. Without a black hole: Omegahat = 0
+// and the 2-point solve for (sigma, C_B) (physics-notes §9 T1). With one (a puncture service): the
+// corotating star, the 3-point solve for (sigma, Omegahat, C_B) at xhat = 1, xhat_A, xhat_C, the model
+// evaluated at sigma_eff = sigma (1 + delta)^2, delta = Mhat_BH/(2 dhat) (§4.5), the reset with beta
+// and Omegahat. One reset and one step for both.
 #include <array>
 #include <memory>
 #include <string>
@@ -13,6 +16,7 @@
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "bhnsid/interfaces/tov_family.hpp"
+#include "fluid.hpp"
 
 namespace bhnsid::hydro_corotating {
 
@@ -24,40 +28,25 @@ struct StarSettings {
   bool iterate = true;       ///< false: keep the initial TOV density (a fixed-source solve)
 };
 
-/// The constants the outer iteration solves for.
-struct StarConstants {
-  double sigma = 0;
-  double bernoulli = 0;  ///< C_B
-  double x_c = 0;        ///< xhat_C, the density maximum on the x axis
-};
-
-/// The fluid as the field equations see it (the "hydro" service).
-class StarFluid final : public Fluid {
- public:
-  double sigma() const override { return constants.sigma; }
-  bool moving() const override { return false; }
-  std::array<double, 3> centre() const override { return {robin_centre, 0.0, 0.0}; }
-  double bernoulli_constant() const override { return constants.bernoulli; }
-  StarConstants constants;
-  double robin_centre = 0;  ///< fixed at the initial xhat_C: the solver reads its boundary once
-};
-
 /// What one outer step did, for the log, the CHECK entry and the history file.
 struct StepReport {
   int iteration = 0;
   StarConstants before, after;
-  double change = 0;  ///< max(|d sigma / sigma|, |d C_B / C_B|)
+  double change = 0;  ///< max(|d sigma / sigma|, |d Omegahat / Omegahat|, |d C_B / C_B|, |d M0 / M0|)
   bool converged = false;
   int matter_points = 0;
 };
 
 class Star {
  public:
-  /// Fills `fluid` (published earlier, so the equations could find it) with the initial constants.
-  Star(Grid& grid, const Eos& eos, const TovFamily& family, StarSettings settings, std::shared_ptr<StarFluid> fluid);
+  /// Fills `fluid` (published earlier, so the equations could find it) with the initial constants;
+  /// `hole` is the black hole of a binary, or null.
+  Star(Grid& grid, const Eos& eos, const TovFamily& family, StarSettings settings, std::shared_ptr<StarFluid> fluid,
+       const Puncture* hole);
 
   /// TOV initial guess (physics-notes §4.7): rho0, chi = psi_TOV, eta = alpha_TOV psi_TOV of the TOV
-  /// star of rho_max placed on hatted radius Rhat about xhat_C.
+  /// star of rho_max placed on hatted radius Rhat about xhat_C; with a hole, sigma_0 = R_iso/(Rhat
+  /// phi_ext^2), phi_ext = 1 + delta (the hole shrinks the star; R_iso/Rhat lies above the fold).
   void set_initial();
   /// One outer step after a field solve; keeps the old density when converged, so that the
   /// written fields and their sources stay a consistent pair.
@@ -71,8 +60,15 @@ class Star {
  private:
   /// Fills press and enthalpy from rho0 on the finest level.
   void fill_thermodynamics();
-  /// rho0 from the Bernoulli equation with the sigma-modelled lapse; returns the matter points.
+  /// rho0 from the Bernoulli equation with the sigma-modelled lapse and conformal factor, the shift
+  /// and Omegahat; returns the matter points.
   int bernoulli_reset(const StarConstants& next);
+  /// delta = Mhat_BH/(2 dhat), the hole's conformal factor across the star (0 without a hole).
+  double hole_delta() const;
+  /// The model's sigma: sigma (1 + delta)^2 (physics-notes §4.5, "with a black hole present").
+  double model_sigma(double sigma) const;
+  /// Omegahat from Kepler, sqrt(Mhat_tot / dhat^3) (hatted; physics-notes §4.7).
+  double kepler_omega() const;
   double axis_maximum() const;  // xhat_C from the parabola through the axis maximum (§4.3)
 
   Grid& grid_;
@@ -81,6 +77,8 @@ class Star {
   StarSettings settings_;
   TovStar tov_;
   std::shared_ptr<StarFluid> fluid_;
+  const Puncture* hole_;
+  double m0_change_ = 1;  ///< |d M0 / M0| of the last reset
   std::vector<StepReport> history_;
   int rho0_, press_, enthalpy_, chi_, eta_, puncture_phi_;
 };

@@ -143,19 +143,21 @@ void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, const N
   g.alpha = make_compact(set, 0, false);
   for (int p = 0; p < 6; ++p) g.gamma[static_cast<std::size_t>(p)] = make_compact(set, (p == 2 || p == 4) ? 1 : 0);
   for (int a = 0; a < 3; ++a) g.beta_down[static_cast<std::size_t>(a)] = make_compact(set, zcount(a), false);
-  g.rho_e = make_compact(inner, 0);
-  g.trace_s = make_compact(inner, 0);
   g.lorentz = make_compact(inner, 0);
-  for (int a = 0; a < 3; ++a) g.j_up[static_cast<std::size_t>(a)] = make_compact(inner, zcount(a));
   g.rho0 = copy(grid, inner, fields::rho0, 0, 0);
   g.enthalpy = copy(grid, inner, fields::enthalpy, 0, 0);
+  // The matter projections are the hydro plugin's (its kinematics, refreshed from the solution
+  // before the evaluation); the IRE checks the field equations they source, not the fluid's motion.
   Field press;
-  std::array<Field, 3> velocity;
   if (in.fluid) {
     press = copy(grid, inner, fields::press, 0, 0);
-    for (int a = 0; a < 3; ++a)
-      velocity[static_cast<std::size_t>(a)] =
-          in.moving ? copy(grid, inner, fields::fluid_velocity, a, zcount(a)) : make_compact(inner, zcount(a));
+    g.rho_e = copy(grid, inner, fields::matter_energy, 0, 0);
+    g.trace_s = copy(grid, inner, fields::matter_trace, 0, 0);
+    for (int a = 0; a < 3; ++a) g.j_up[static_cast<std::size_t>(a)] = copy(grid, inner, fields::matter_momentum, a, zcount(a));
+  } else {
+    g.rho_e = make_compact(inner, 0);
+    g.trace_s = make_compact(inner, 0);
+    for (int a = 0; a < 3; ++a) g.j_up[static_cast<std::size_t>(a)] = make_compact(inner, zcount(a));
   }
   for_needed(set, [&](int i, int j, int k) {
     const std::size_t at = b.at(i, j, k);
@@ -175,18 +177,9 @@ void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, const N
     const auto q = static_cast<std::size_t>(inner.slot[at]);
     g.lorentz.v[q] = 1;
     if (!in.fluid) return;
-    // Eulerian 3-velocity v^i = (beta^i + V^i)/alpha, W = 1/sqrt(1 - gamma_ij v^i v^j).
-    double v[3], v2 = 0;
-    for (int a = 0; a < 3; ++a) {
-      v[a] = (g.beta_up[static_cast<std::size_t>(a)].v[p] + velocity[static_cast<std::size_t>(a)].v[q]) / al;
-      v2 += psi4 * v[a] * v[a];
-    }
-    if (!in.moving) v2 = 0, v[0] = v[1] = v[2] = 0;
-    const double w2 = 1.0 / (1.0 - v2), rh = g.rho0.v[q] * g.enthalpy.v[q];
-    g.lorentz.v[q] = std::sqrt(w2);
-    g.rho_e.v[q] = rh * w2 - press.v[q];
-    g.trace_s.v[q] = rh * w2 * v2 + 3.0 * press.v[q];
-    for (int a = 0; a < 3; ++a) g.j_up[static_cast<std::size_t>(a)].v[q] = rh * w2 * v[a];
+    // W from rho_E = rho0 h W^2 - P, for any perfect fluid (the Bernoulli residual's W).
+    const double rh = g.rho0.v[q] * g.enthalpy.v[q];
+    if (rh > 0) g.lorentz.v[q] = std::sqrt((g.rho_e.v[q] + press.v[q]) / rh);
   });
 }
 

@@ -3,7 +3,8 @@
 // puncture, the fluid) it builds the physical fields gamma_ij, K_ij, alpha, beta^i and the matter in
 // hatted coordinates and evaluates the covariant equations with generic Christoffel symbols, Ricci
 // tensor and covariant derivatives, by centred differences of its own: first derivatives D0, second
-// derivatives D0(D0 u) (the solver uses D+D-). It shares no code with the equation plugins.
+// derivatives D0(D0 u) (the solver uses D+D-). It shares no code with the equation plugins;
+// the matter projections it reads are the hydro plugin's (refreshed from the solution).
 #include <array>
 #include <map>
 #include <string>
@@ -15,8 +16,7 @@ namespace bhnsid::ire {
 
 struct Inputs {
   double sigma = 1;
-  bool fluid = false;       ///< rho0, press, enthalpy fields present and meaningful
-  bool moving = false;      ///< fluid_velocity non-zero
+  bool fluid = false;       ///< rho0, press, enthalpy and the matter projections present and meaningful
   double bernoulli = 0;     ///< C_B; NaN when the fluid has none (no Bernoulli residual)
   bool puncture = false;
   double bare_mass = 0;

@@ -1,13 +1,16 @@
 // The ire plugin: the independent residual evaluator of physics-notes §7, run on the solution in
-// ANALYSIS; residual norms to summary.json and the x axis to ire_axis.tsv.
+// ANALYSIS; residual norms to summary.json and the x axis to residual_axis.tsv, as bhnsid validate
+// reads them (core/residual_report.hpp).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
 
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/plugin.hpp"
+#include "bhnsid/core/residual_report.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "evaluator.hpp"
@@ -27,11 +30,19 @@ void declare(core::PluginBuilder& b) {
   auto state = std::make_shared<State>();
   b.require("grid");
   b.implements("ire");
+  b.implements(core::residual_report::capability);
   b.memory([](const Context& ctx, core::MemoryEstimate& m) {
     if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
       // Two int32 slot maps and two byte masks per finest point (evaluator.cpp's box).
       m.add(ctx.plugin(), "box", fmt::format("the evaluator's point maps (10 bytes a point) at {}", layout->describe()),
             10.0 / sizeof(double) * layout->field_bytes(core::Storage::finest_only));
+      // The geometry on the evaluated points and their stencil neighbours: about 70 doubles a point
+      // (metric, curvature, Christoffels, Sigma_ij, the copies of the solution; evaluator.cpp's
+      // Geometry). With stride s the s^-3 evaluated points bring at most 13 neighbours each.
+      const double stride = static_cast<double>(ctx.params().integer("stride"));
+      const double share = stride == 1 ? 1.0 : std::min(1.0, 13.0 / (stride * stride * stride));
+      m.add(ctx.plugin(), "geometry", fmt::format("the evaluator's geometry (70 doubles a point) at {}", layout->describe()),
+            70.0 * share * layout->field_bytes(core::Storage::finest_only));
     }
   });
   b.integer("exclude_cells")
@@ -39,29 +50,33 @@ void declare(core::PluginBuilder& b) {
            "max(Mhat_BH/2, 3 dx)) widened by this many points")
       .default_value(std::int64_t{2})
       .at_least(0)
-      .at_most(4096);
+      .at_most(4096)
+      .refines(core::Refinement::doubles);
   b.integer("surface_cells")
       .doc("the star's surface band, normed apart: points at most this many points (max norm) from a point whose "
            "rho0 > 0 differs from a neighbour's")
       .default_value(std::int64_t{2})
       .at_least(0)
-      .at_most(4096);
+      .at_most(4096)
+      .refines(core::Refinement::doubles);
 
   b.integer("stride")
       .doc("evaluate at every stride-th point along each axis from the cube's corner, i.e. at the points of the grid "
            "with stride times the spacing (bhnsid validate compares resolutions there, at a fraction of the cost)")
       .default_value(std::int64_t{1})
       .at_least(1)
-      .at_most(4096);
+      .at_most(4096)
+      .refines(core::Refinement::doubles);
 
   b.schedule(Bin::analysis, "residuals", [state](Context& ctx) {
-     const auto& grid = ctx.services().get<Grid>("grid");
+     auto& grid = ctx.services().get<Grid>("grid");
      const auto* fluid = ctx.services().find<Fluid>("hydro");
+     // The projections of the solution itself (the last sweep's may lag it by one sweep).
+     if (fluid && grid.has_field(fields::matter_energy)) fluid->update_sources(grid, 0);
      const auto* puncture = ctx.services().find<Puncture>("puncture");
      Inputs in;
      in.sigma = fluid ? fluid->sigma() : 1.0;
-     in.fluid = fluid != nullptr && grid.has_field(fields::rho0);
-     in.moving = fluid && fluid->moving();
+     in.fluid = fluid != nullptr && grid.has_field(fields::matter_energy);
      in.bernoulli = fluid ? fluid->bernoulli_constant() : std::nan("");
      if (puncture) {
        in.puncture = true;
@@ -75,16 +90,19 @@ void declare(core::PluginBuilder& b) {
      state->result = evaluate(grid, in);
      state->evaluated = true;
      const Result& r = state->result;
+     using core::residual_report::key;
      for (const std::string& e : r.equations) {
        const Norms& away = r.away.at(e);
-       ctx.set_scalar("ire_" + e + "_l2", away.l2);
-       ctx.set_scalar("ire_" + e + "_max", away.max);
-       ctx.set_scalar("ire_" + e + "_points", static_cast<double>(away.points));
+       ctx.set_scalar(key(e, "l2"), away.l2);
+       ctx.set_scalar(key(e, "max"), away.max);
+       ctx.set_scalar(key(e, "points"), static_cast<double>(away.points));
+       // Bernoulli holds only to the outer tolerance with the modelled lapse (physics-notes §7).
+       ctx.set_scalar(key(e, "judged"), e == "bernoulli" ? 0.0 : 1.0);
        if (in.fluid) {
-         ctx.set_scalar("ire_" + e + "_surface_l2", r.surface.at(e).l2);
-         ctx.set_scalar("ire_" + e + "_surface_max", r.surface.at(e).max);
+         ctx.set_scalar(key(e, "surface_l2"), r.surface.at(e).l2);
+         ctx.set_scalar(key(e, "surface_max"), r.surface.at(e).max);
        }
-       if (in.puncture) ctx.set_scalar("ire_" + e + "_puncture_max", r.puncture.at(e).max);
+       if (in.puncture) ctx.set_scalar(key(e, "puncture_max"), r.puncture.at(e).max);
        ctx.log().info("IRE {:<11s} away: L2 {:.3e}, max {:.3e} ({} points){}{}", e, away.l2, away.max, away.points,
                       in.fluid ? fmt::format("; surface band: L2 {:.3e}, max {:.3e}", r.surface.at(e).l2, r.surface.at(e).max) : "",
                       in.puncture ? fmt::format("; near the puncture: max {:.3e}", r.puncture.at(e).max) : "");
@@ -94,8 +112,8 @@ void declare(core::PluginBuilder& b) {
           "L2 (rms) and max norms away from the puncture and the star's surface, and in those regions apart");
 
   b.schedule(Bin::output, "axis", [state](Context& ctx) {
-     if (state->evaluated) ctx.write_output("ire_axis.tsv", state->result.axis_table);
-   }).doc("ire_axis.tsv: the residuals along the x axis (nan where the stencils do not fit), with each point's region");
+     if (state->evaluated) ctx.write_output(core::residual_report::axis_file, state->result.axis_table);
+   }).doc("residual_axis.tsv: the residuals along the x axis (nan where the stencils do not fit), with each point's region");
 }
 
 }  // namespace

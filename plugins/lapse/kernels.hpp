@@ -12,20 +12,19 @@
 
 namespace bhnsid::lapse {
 
-/// Arrays of one level the local term reads (velocity and shift only for moving matter; shift may
-/// be null).
+/// Arrays of one level the local term reads; matter only with a fluid.
 struct Sources {
   const double* chi = nullptr;
   const double* puncture_phi = nullptr;
   const double* aa = nullptr;
-  MatterArrays matter;
+  MatterSources matter;     ///< rho_E and S from the hydro plugin, refreshed before the sweep
   double matter_scale = 1;  ///< 1 except in the IRE sensitivity test
 };
 
-/// N(eta) = -eta k(x) and dN/deta = -k at fixed W (W depends on eta only through the velocity,
-/// a small term in the Newton step that the outer solve corrects).
-/// Matter = false (no fluid): the matter term and its three arrays are left out of the sweep.
-template <bool Moving, bool Matter = true>
+/// N(eta) = -eta k(x) and dN/deta = -k at fixed rho_E and S (they depend on eta only through W, a
+/// small term that the next sweep's refreshed projections correct).
+/// Matter = false (no fluid): the matter term and its arrays are left out of the sweep.
+template <bool Matter>
 struct LapseTerm {
   static constexpr bool linear = false;
   Sources s;
@@ -35,18 +34,10 @@ struct LapseTerm {
     const double inv4 = (inv_phi * inv_phi) * (inv_phi * inv_phi);
     double k = 0.875 * s.aa[idx] * inv4 * inv4;
     if constexpr (Matter) {
-      // Selected, not branched on, so that the sweep vectorises (see hamiltonian/kernels.hpp).
-      const MatterArrays& m = s.matter;
-      const double rho0 = m.rho0[idx];
-      double lorentz2 = 1.0;
-      if constexpr (Moving)
-        lorentz2 = lorentz_squared(phi, eta, m.coordinate_velocity(0, idx), m.coordinate_velocity(1, idx),
-                                   m.coordinate_velocity(2, idx));
-      const MatterProjections p = matter_projections(rho0, m.press[idx], m.enthalpy[idx], lorentz2);
+      // The projections are 0 outside the matter (the hydro plugin writes them so).
+      const MatterSources& m = s.matter;
       const double phi2 = phi * phi;
-      const double k_matter =
-          2.0 * std::numbers::pi * m.sigma2 * s.matter_scale * (p.energy + 2.0 * p.trace) * (phi2 * phi2);
-      k += rho0 > 0 ? k_matter : 0.0;
+      k += 2.0 * std::numbers::pi * m.sigma2 * s.matter_scale * (m.energy[idx] + 2.0 * m.trace[idx]) * (phi2 * phi2);
     }
     return {-eta * k, -k};
   }

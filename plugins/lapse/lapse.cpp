@@ -9,7 +9,7 @@ namespace bhnsid::lapse {
 LapseEquation::LapseEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, double matter_scale)
     : grid_(grid), fluid_(fluid), puncture_(puncture), matter_scale_(matter_scale) {
   eta_ = grid.add_field(fields::eta, {core::TensorKind::scalar});
-  for (const char* name : {fields::chi, fields::puncture_phi, fields::aa, fields::rho0})
+  for (const char* name : {fields::chi, fields::puncture_phi, fields::aa})
     if (!grid.has_field(name))
       throw core::RunFailure(fmt::format("lapse: the field {} is missing; the lapse needs the hamiltonian plugin", name));
 }
@@ -20,10 +20,9 @@ OuterBoundary LapseEquation::boundary() const {
 
 std::vector<std::string> LapseEquation::coefficients() const {
   // aa_hat is not restricted: its owner (momentum) fills every level, the Bowen-York part analytically.
-  // In vacuum the fluid arrays stay zero and are not read: restricting them would fault in their
-  // pages for nothing.
+  // The projections are not either: the hydro plugin forms them on each level from its restricted inputs.
   if (!fluid_) return {};
-  return {fields::rho0, fields::press, fields::enthalpy, fields::fluid_velocity};
+  return fluid_->source_inputs();
 }
 
 Sources LapseEquation::sources(int level) const {
@@ -31,7 +30,7 @@ Sources LapseEquation::sources(int level) const {
   s.chi = grid_.data(grid_.field_id(fields::chi), 0, level);
   s.puncture_phi = grid_.data(grid_.field_id(fields::puncture_phi), 0, level);
   s.aa = grid_.data(grid_.field_id(fields::aa), 0, level);
-  s.matter = matter_arrays(grid_, fluid_, level);
+  if (fluid_) s.matter = matter_sources(grid_, *fluid_, level);
   s.matter_scale = matter_scale_;
   return s;
 }
@@ -41,12 +40,10 @@ void LapseEquation::residual(const RelaxArgs& args, double* const* out) const {
   const double* eta = grid_.data(eta_, 0, l);
   const double* rhs = args.rhs ? args.rhs[0] : nullptr;
   const Sources s = sources(l);
-  if (moving())
+  if (fluid_)
     stencil::scalar_residual_any(grid_.level(l), eta, rhs, args.fixed, out[0], LapseTerm<true>{s});
-  else if (fluid_)
-    stencil::scalar_residual_any(grid_.level(l), eta, rhs, args.fixed, out[0], LapseTerm<false>{s});
   else
-    stencil::scalar_residual_any(grid_.level(l), eta, rhs, args.fixed, out[0], LapseTerm<false, false>{s});
+    stencil::scalar_residual_any(grid_.level(l), eta, rhs, args.fixed, out[0], LapseTerm<false>{s});
 }
 
 void LapseEquation::relax(const RelaxArgs& args) const {
@@ -55,12 +52,10 @@ void LapseEquation::relax(const RelaxArgs& args) const {
   const double* rhs = args.rhs ? args.rhs[0] : nullptr;
   const Sources s = sources(l);
   const stencil::Mirror mirror = [this, l] { grid_.fill_ghosts(eta_, l); };
-  if (moving())
+  if (fluid_)
     stencil::scalar_relax_any(grid_.level(l), eta, rhs, args.fixed, args.omega, mirror, LapseTerm<true>{s});
-  else if (fluid_)
-    stencil::scalar_relax_any(grid_.level(l), eta, rhs, args.fixed, args.omega, mirror, LapseTerm<false>{s});
   else
-    stencil::scalar_relax_any(grid_.level(l), eta, rhs, args.fixed, args.omega, mirror, LapseTerm<false, false>{s});
+    stencil::scalar_relax_any(grid_.level(l), eta, rhs, args.fixed, args.omega, mirror, LapseTerm<false>{s});
 }
 
 }  // namespace bhnsid::lapse

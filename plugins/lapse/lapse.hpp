@@ -25,7 +25,6 @@ class LapseEquation final : public EllipticEquation {
 
  private:
   Sources sources(int level) const;
-  bool moving() const { return fluid_ && fluid_->moving(); }
 
   Grid& grid_;
   const Fluid* fluid_;

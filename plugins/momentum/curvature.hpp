@@ -4,6 +4,7 @@
 // them (hamiltonian and lapse read aa_hat, the shift reads ahat); none of them restricts these fields.
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
+#include "bowen_york.hpp"
 
 namespace bhnsid::momentum {
 

@@ -4,7 +4,7 @@
 //   lap W^i + (1/3) d_i (d_k W^k) - Zhat^ij d_j(2 eta/chi^7) - 16 pi sigma^2 eta phi^10 chi^-7 J^i = 0,
 //   Zhat^ij d_j(2 eta/chi^7) = (LW)^ij (d_j eta/eta - 7 d_j chi/chi),
 //   (LW)^ij = d_i W^j + d_j W^i - (2/3) delta_ij d_k W^k,
-//   phi = puncture_phi + chi,  J^i = rho0 h W_L^2 v^i,  v^i = (beta^i + V^i)/alpha,  alpha = eta/phi.
+//   phi = puncture_phi + chi,  J^i = j^i, the hydro plugin's momentum density.
 // They plug into core's stencil::vector_residual/vector_relax (vector_sweep.hpp) as the Lower term
 // N^i: it reads W only through centred first differences (never W at the point itself), and J
 // depends on the fluid, chi, eta and the shift but not on W, so the point Jacobian stays
@@ -17,19 +17,14 @@
 
 namespace bhnsid::momentum {
 
-/// Arrays of one level that the lower-order term reads; the fluid arrays only with matter, the shift
-/// only when a shift equation is active (beta = 0 otherwise).
+/// Arrays of one level that the lower-order term reads; the momentum density only with matter.
 struct Sources {
   const double* chi = nullptr;
   const double* eta = nullptr;
   const double* puncture_phi = nullptr;
-  const double* rho0 = nullptr;
-  const double* enthalpy = nullptr;
-  const double* velocity[3] = {nullptr, nullptr, nullptr};
-  const double* shift[3] = {nullptr, nullptr, nullptr};
+  MatterSources matter;           ///< j^i from the hydro plugin, refreshed before the sweep
   std::ptrdiff_t sy = 0, sz = 0;  ///< strides of the level (chi and eta are differenced in place)
   double inv_2h = 0;              ///< 1/(2h) of the level
-  double sigma2 = 1;              ///< sigma^2: the matter term of the hatted equation carries it (§1.3)
   double source_scale = 1;        ///< 1 except in tests (test_source_scale)
 };
 
@@ -47,11 +42,9 @@ struct Sym6 {
 }
 
 /// N^i = -(LW)^ij (d_j eta/eta - 7 d_j chi/chi) - 16 pi sigma^2 eta phi^10 chi^-7 J^i at one point.
-/// Matter = false drops the J term (no fluid); Shift = false reads beta = 0 (no shift equation).
-/// The J term counts only where rho0 > 0 (selected, not branched, so that the loop vectorises): a
-/// velocity field that is superluminal outside the star (Omega xi grows with radius) gives a NaN
-/// there that is never used.
-template <bool Matter, bool Shift>
+/// Matter = false drops the J term (no fluid); j^i is 0 outside the matter (the hydro plugin writes
+/// it so).
+template <bool Matter>
 struct MomentumLower {
   Sources s;
 
@@ -71,26 +64,16 @@ struct MomentumLower {
     stencil::Triple n{-(lw.xx * gjx + lw.xy * gjy + lw.xz * gjz), -(lw.xy * gjx + lw.yy * gjy + lw.yz * gjz),
                       -(lw.xz * gjx + lw.yz * gjy + lw.zz * gjz)};
     if constexpr (Matter) {
-      const double rho0 = s.rho0[idx];
-      double ux = s.velocity[0][idx], uy = s.velocity[1][idx], uz = s.velocity[2][idx];
-      if constexpr (Shift) {
-        ux += s.shift[0][idx];
-        uy += s.shift[1][idx];
-        uz += s.shift[2][idx];
-      }
+      const MatterSources& m = s.matter;
       const double phi = s.puncture_phi[idx] + c[0];
-      const double alpha = e[0] / phi;
-      const double lorentz2 = lorentz_squared(phi, e[0], ux, uy, uz);
       const double phi2 = phi * phi, phi4 = phi2 * phi2;
       const double inv_chi = 1.0 / c[0], inv_chi2 = inv_chi * inv_chi;
-      // 16 pi sigma^2 eta phi^10 chi^-7, times J^i = rho0 h W^2 u^i / alpha below.
-      const double k = 16.0 * std::numbers::pi * s.sigma2 * s.source_scale * e[0] * (phi4 * phi4 * phi2) *
+      // 16 pi sigma^2 eta phi^10 chi^-7 J^i.
+      const double k = 16.0 * std::numbers::pi * m.sigma2 * s.source_scale * e[0] * (phi4 * phi4 * phi2) *
                        (inv_chi2 * inv_chi2 * inv_chi2 * inv_chi);
-      const double hh = s.enthalpy[idx];
-      const bool in_matter = rho0 > 0;
-      n.x -= in_matter ? k * momentum_density(rho0, hh, lorentz2, ux, alpha) : 0.0;
-      n.y -= in_matter ? k * momentum_density(rho0, hh, lorentz2, uy, alpha) : 0.0;
-      n.z -= in_matter ? k * momentum_density(rho0, hh, lorentz2, uz, alpha) : 0.0;
+      n.x -= k * m.momentum[0][idx];
+      n.y -= k * m.momentum[1][idx];
+      n.z -= k * m.momentum[2][idx];
     }
     return n;
   }

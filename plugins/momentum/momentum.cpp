@@ -15,15 +15,13 @@ const std::vector<TensorKind> vector{TensorKind::vector_x, TensorKind::vector_y,
 const std::vector<TensorKind> symmetric{TensorKind::tensor_xx, TensorKind::tensor_xy, TensorKind::tensor_xz,
                                         TensorKind::tensor_yy, TensorKind::tensor_yz, TensorKind::tensor_zz};
 
-/// Calls fn(MomentumLower<matter, shift>{s}): no matter, matter without a shift, matter with one.
+/// Calls fn(MomentumLower<matter>{s}).
 template <class Fn>
 void with_lower(const Sources& s, bool matter, Fn&& fn) {
-  if (!matter)
-    fn(MomentumLower<false, false>{s});
-  else if (s.shift[0])
-    fn(MomentumLower<true, true>{s});
+  if (matter)
+    fn(MomentumLower<true>{s});
   else
-    fn(MomentumLower<true, false>{s});
+    fn(MomentumLower<false>{s});
 }
 
 int required_field(const Grid& grid, const char* name) {
@@ -47,13 +45,6 @@ MomentumEquation::MomentumEquation(Grid& grid, const Fluid* fluid, const Punctur
   ahat_ = grid.add_field(fields::ahat, symmetric, core::TimeParity::odd);
   // Registered by the hamiltonian plugin when it is active; the same kinds return that field.
   aa_ = grid.add_field(fields::aa, scalar);
-  if (fluid_) {
-    // As the hamiltonian plugin registers them (registering an existing field again returns it).
-    rho0_ = grid.add_field(fields::rho0, scalar);
-    grid.add_field(fields::press, scalar);
-    enthalpy_ = grid.add_field(fields::enthalpy, scalar);
-    velocity_ = grid.add_field(fields::fluid_velocity, vector, core::TimeParity::odd);
-  }
 }
 
 OuterBoundary MomentumEquation::boundary() const {
@@ -66,9 +57,9 @@ OuterBoundary MomentumEquation::boundary() const {
 
 std::vector<std::string> MomentumEquation::coefficients() const {
   // chi and eta are the hamiltonian's and the lapse's unknowns (the solver keeps them on every level)
-  // and puncture_phi is analytic on every level, so only the fluid is restricted.
+  // and puncture_phi is analytic on every level, so only the hydro plugin's inputs are restricted.
   if (!fluid_) return {};
-  return {fields::rho0, fields::enthalpy, fields::fluid_velocity};
+  return fluid_->source_inputs();
 }
 
 Sources MomentumEquation::sources(int level) const {
@@ -81,17 +72,7 @@ Sources MomentumEquation::sources(int level) const {
   s.sz = lv.sz;
   s.inv_2h = 0.5 / lv.dx;
   s.source_scale = source_scale_;
-  if (fluid_) {
-    s.sigma2 = fluid_->sigma() * fluid_->sigma();
-    s.rho0 = grid_.data(rho0_, 0, level);
-    s.enthalpy = grid_.data(enthalpy_, 0, level);
-    // The shift plugin may register beta after this equation was built: looked up at every call.
-    const int beta = grid_.has_field(fields::shift) ? grid_.field_id(fields::shift) : -1;
-    for (int c = 0; c < 3; ++c) {
-      s.velocity[c] = grid_.data(velocity_, c, level);
-      s.shift[c] = beta >= 0 ? grid_.data(beta, c, level) : nullptr;
-    }
-  }
+  if (fluid_) s.matter = matter_sources(grid_, *fluid_, level);
   return s;
 }
 

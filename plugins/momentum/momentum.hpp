@@ -39,7 +39,6 @@ class MomentumEquation final : public EllipticEquation {
   const Puncture* puncture_;
   double source_scale_;
   int w_ = -1, chi_ = -1, eta_ = -1, puncture_phi_ = -1, ahat_ = -1, aa_ = -1;
-  int rho0_ = -1, enthalpy_ = -1, velocity_ = -1;
 };
 
 }  // namespace bhnsid::momentum

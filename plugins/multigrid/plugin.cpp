@@ -47,8 +47,6 @@ Settings settings_from(const core::ParamSection& p) {
 // docs/reliability.md); time grows faster still, so very large coarsest levels are refused.
 double coarse_lu_bytes(double rows) { return 12.0 * 60.0 * std::pow(rows, 4.0 / 3.0); }
 
-constexpr double max_coarse_rows = 60000;
-
 void check_coarse_rows(double rows, const Level& coarsest, const std::string& where) {
   if (rows > max_coarse_rows)
     throw core::InputError(fmt::format(
@@ -124,7 +122,8 @@ void declare(core::PluginBuilder& b) {
        state->solver = std::make_unique<FasSolver>(grid, equations, settings_from(ctx.params()), ctx.log());
        std::string names;
        for (const Slot& s : state->solver->slots()) names += (names.empty() ? "" : ", ") + s.name;
-       ctx.log().info("solving {} equation(s) together: {}; {} levels", equations.size(), names, grid.num_levels());
+       ctx.log().info("solving {} equation(s) together: {}; {} of the grid's {} levels", equations.size(), names,
+                      state->solver->levels(), grid.num_levels());
      }
      // last_report() also holds the history of a failed solve, for OUTPUT.
      try {

@@ -14,6 +14,9 @@
 
 namespace bhnsid::multigrid {
 
+/// The coarsest level's direct solve is bounded to this many unknowns (its LU fill and time, docs/reliability.md).
+inline constexpr double max_coarse_rows = 60000;
+
 enum class CycleType { v, w, f };
 
 struct Settings {
@@ -80,6 +83,8 @@ class FasSolver {
   /// failure_hint().
   SolveReport solve();
   const std::vector<Slot>& slots() const { return slots_; }
+  /// The levels the cycle uses: the grid's, cut above the first level too coarse for a Robin centre.
+  int levels() const { return levels_; }
   /// The history of the last solve, also after it failed.
   const SolveReport& last_report() const { return report_; }
 
@@ -117,6 +122,7 @@ class FasSolver {
   Grid& grid_;
   Settings settings_;
   core::Log log_;
+  int levels_ = 0;
   std::vector<Slot> slots_;
   // Robin rows per distinct falloff centre, per level: equations about one centre share them, and
   // the smoother relaxes all their components in one pass over the rows.

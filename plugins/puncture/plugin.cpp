@@ -1,8 +1,9 @@
 // The puncture plugin (implements "puncture"): the black hole as a Brandt-Brugmann puncture of bare
 // mass Mhat_BH at xhat_BH with a Bowen-York momentum Phat_BH (physics-notes §1.3, §2.6). It publishes
 // the Puncture service that the field equations read: the analytic Mhat/(2 rhat) part of phi
-// (hamiltonian), the Bowen-York part of Ahat^ij (momentum), the excision cube (shift). Here the three
-// are parameters; the binary updates them from the star.
+// (hamiltonian), the Bowen-York part of Ahat^ij (momentum), the excision cube (shift). Alone the three
+// are parameters; with mass_ratio > 0 and a star (hydro) they are the binary's, set from the star every
+// outer iteration (binary.hpp), so that no hydro plugin carries the black hole's bookkeeping.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/core/plugin.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
+#include "binary.hpp"
 #include "grid_points.hpp"
 
 namespace bhnsid::puncture {
@@ -36,10 +38,21 @@ void declare(core::PluginBuilder& b) {
   b.implements("puncture");
   b.require("grid");  // the position is checked against grid.n and grid.dx
 
-  b.real("bare_mass").doc("bare mass Mhat_BH of the puncture (hatted units)").required(1.0).greater_than(0);
+  b.real("mass_ratio")
+      .doc("mu_bn = M_BH / M_NS; > 0: the black hole of a binary with the star of the hydro plugin, its bare mass, "
+           "position and momentum set from the star every outer iteration (Mhat_BH = mu_bn M_NS(M0)/sigma, "
+           "xhat_BH = -xhat_C/mu_bn, Phat_y = -sigma^2 Int phi^10 j^y; bare_mass and position are then not used); "
+           "0: the puncture of bare_mass, position, momentum")
+      .default_value(0.0)
+      .at_least(0);
+  b.real("bare_mass")
+      .doc("bare mass Mhat_BH of the puncture (hatted units); required (> 0) unless mass_ratio > 0")
+      .default_value(0.0)
+      .at_least(0);
   b.real_vector("position")
-      .doc("hatted position xhat_BH; must not be a grid point of any multigrid level (1/r there)")
-      .required(std::vector<double>{0.0075, 0, 0})
+      .doc("hatted position xhat_BH; must not be a grid point of any multigrid level (1/r there); unused with "
+           "mass_ratio > 0")
+      .default_value(std::vector<double>{0.0075, 0, 0})
       .length(3);
   b.real_vector("momentum")
       .doc("Bowen-York momentum Phat_BH (hatted units); the z component must be 0 with equatorial symmetry")
@@ -49,9 +62,12 @@ void declare(core::PluginBuilder& b) {
   b.schedule(Bin::paramcheck, "check", [](Context& ctx) {
      const auto& p = ctx.params();
      const std::array<double, 3> x = vec3(p.real_vector("position")), mom = vec3(p.real_vector("momentum"));
-     if (!(p.real("bare_mass") > 0 && std::isfinite(p.real("bare_mass"))))
-       throw core::InputError(fmt::format("puncture.bare_mass = {}: expected a finite value > 0", p.real("bare_mass")));
-     check_off_the_points(ctx, x);
+     const bool binary = p.real("mass_ratio") > 0;
+     if (!binary && !(p.real("bare_mass") > 0 && std::isfinite(p.real("bare_mass"))))
+       throw core::InputError(fmt::format("puncture.bare_mass = {}: expected a finite value > 0 (or puncture.mass_ratio "
+                                          "> 0 for the black hole of a binary)",
+                                          p.real("bare_mass")));
+     if (!binary) check_off_the_points(ctx, x);
      const auto& grid = ctx.params("grid");
      if (grid.string("symmetry") == "equatorial" && (x[2] != 0 || mom[2] != 0))
        throw core::InputError(fmt::format("puncture.position / puncture.momentum: z components {} and {} must be 0 with "
@@ -68,6 +84,60 @@ void declare(core::PluginBuilder& b) {
      ctx.log().info("puncture: Mhat = {}, xhat = ({}, {}, {}), Phat = ({}, {}, {})", hole->mass, hole->x[0], hole->x[1],
                     hole->x[2], hole->p[0], hole->p[1], hole->p[2]);
    }).doc("publish the Puncture service");
+
+  b.schedule(Bin::setup, "binary_start", [hole](Context& ctx) {
+     const double mu = ctx.params().real("mass_ratio");
+     if (!(mu > 0)) return;
+     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* family = ctx.services().find<TovFamily>("tov_family");
+     if (!fluid || !family)
+       throw core::InputError(fmt::format("puncture.mass_ratio = {}: the black hole of a binary needs a star: add a "
+                                          "hydro plugin and the tov plugin (M_NS(M0)) to plugins",
+                                          mu));
+     const auto& grid = ctx.services().get<Grid>("grid");
+     const HoleValues h = scaled_hole(grid, *fluid, *family, mu, fluid->initial_rest_mass());
+     hole->mass = h.mass;
+     hole->x = h.position;
+     if (!h.moved.empty()) ctx.log().info("puncture: {}", h.moved);
+     ctx.log().info("puncture of the binary (mu_bn = {}): Mhat_BH = {:.9g}, xhat_BH = {:.9g} from the initial star "
+                    "(M0 = {:.9g}, sigma = {:.9g})",
+                    mu, hole->mass, hole->x[0], fluid->initial_rest_mass(), fluid->sigma());
+   })
+      .after("hydro.setup")
+      .before("shift.setup")
+      .doc("with mass_ratio > 0: Mhat_BH and xhat_BH from the initial star, before the shift builds its cube");
+
+  b.schedule(Bin::update, "binary_update", [hole](Context& ctx) {
+     const double mu = ctx.params().real("mass_ratio");
+     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     // At the converged step the star kept its sources: so does the hole (consistent output).
+     if (!(mu > 0) || !fluid || fluid->settled()) return;
+     auto& grid = ctx.services().get<Grid>("grid");
+     const double m0 = fluid->rest_mass();
+     HoleValues h = scaled_hole(grid, *fluid, ctx.services().get<TovFamily>("tov_family"), mu, m0);
+     h.momentum = {0.0, balancing_momentum(grid, *fluid), 0.0};
+     if (!h.moved.empty()) ctx.log().info("puncture: {}", h.moved);
+     ctx.log().info("puncture: Mhat_BH = {:.12g}, xhat_BH = {:.12g}, Phat_y = {:.6e} (M0 = {:.12g})", h.mass, h.position[0],
+                    h.momentum[1], m0);
+     hole->mass = h.mass;
+     hole->x = h.position;
+     hole->p = h.momentum;
+   })
+      .after("hydro.outer_step")
+      .doc("with mass_ratio > 0, after the star's outer step: Mhat_BH = mu_bn M_NS(M0)/sigma, xhat_BH = -xhat_C/mu_bn, "
+           "Phat_y = -sigma^2 Int phi^10 j^y; skipped at the converged step");
+
+  b.schedule(Bin::analysis, "report", [hole](Context& ctx) {
+     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const double sigma = fluid ? fluid->sigma() : 1.0;
+     ctx.set_scalar("bh_bare_mass", sigma * hole->mass);
+     ctx.set_scalar("bh_position_x", sigma * hole->x[0]);
+     ctx.set_scalar("bh_momentum_y", sigma * hole->p[1]);
+     ctx.set_scalar("bh_bare_mass_hat", hole->mass);
+     ctx.set_scalar("bh_position_x_hat", hole->x[0]);
+     ctx.set_scalar("bh_momentum_y_hat", hole->p[1]);
+   }).doc("bh_bare_mass, bh_position_x, bh_momentum_y (physical: sigma times the hatted values) and the hatted "
+          "bh_bare_mass_hat, bh_position_x_hat, bh_momentum_y_hat");
 }
 
 }  // namespace

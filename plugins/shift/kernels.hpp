@@ -6,7 +6,7 @@
 //       + 2 phi^-6 Ahat^ij d_j alpha + 16 pi sigma^2 alpha phi^4 J^i,
 //   phi = Mhat/(2 r) + chi,  dphi_i = -Mhat n_i/(2 r^2) + d_i chi  (the puncture's part analytic),
 //   alpha = eta/phi,  d_i alpha = (d_i eta - alpha dphi_i)/phi,
-//   J^i = rho0 h W^2 v^i,  v^i = (beta^i + V^i)/alpha.
+//   J^i = j^i, the hydro plugin's momentum density (refreshed before each sweep).
 // The right-hand side enters core's vector sweep (stencil::vector_residual/relax) as the lower-order
 // term N = -RHS of L(beta) = lap beta + (1/3) grad div beta + N = 0.
 #include <cmath>
@@ -29,10 +29,7 @@ struct Sources {
   double x0 = 0, y0 = 0, z0 = 0;   ///< the level's point (0, 0, 0) minus xhat_BH, hole only
   double dx = 0;                   ///< the level's spacing
   const double* ahat[6] = {nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};  ///< xx, xy, xz, yy, yz, zz (zz unread: traceless)
-  const double* rho0 = nullptr;          ///< matter only
-  const double* enthalpy = nullptr;      ///< matter only
-  const double* velocity[3] = {nullptr, nullptr, nullptr};  ///< the fluid's V^i, matter only
-  double sigma2 = 1;        ///< sigma^2 on the matter term (physics-notes §1.3)
+  MatterSources matter;     ///< j^i and sigma^2 (physics-notes §1.3), matter only
   double source_scale = 1;  ///< TEST ONLY factor on the Ahat term; 1 for physics
   double coupling_scale = 1;  ///< TEST ONLY factor on the (6/phi)(...) d phi term; 1 for physics
   double inv_2h = 0;        ///< 1/(2 dx) of the level: centred first derivatives
@@ -104,25 +101,17 @@ struct ShiftLower {
              six_phi * shear_z - ka * (axz * dax + ayz * day + azz * daz)};
 
     if constexpr (Matter) {
-      // 16 pi sigma^2 alpha phi^4 J^i with J^i = rho0 h W^2 (beta^i + V^i)/alpha. J reads beta at the
-      // point itself, which core's sweep does not allow for in its fixed point Jacobian -(20/3)/h^2:
-      // the term's derivative, 16 pi sigma^2 phi^4 rho0 h W^2 (~ 10 for a neutron star), is tiny next
-      // to (20/3)/h^2 (~ 7e3 at h = 0.03), so the Gauss-Seidel step is barely changed and the
-      // converged solution not at all. Outside matter (rho0 = 0) the term is 0 and W never formed
-      // (the fluid velocity may be superluminal far out, where W is NaN).
-      const double rho0 = s.rho0[idx];
-      const double ux = x.c[i] + s.velocity[0][idx], uy = y.c[i] + s.velocity[1][idx],
-                   uz = z.c[i] + s.velocity[2][idx];
-      const double w2 = lorentz_squared(phi, e[0], ux, uy, uz);
+      // 16 pi sigma^2 alpha phi^4 J^i. J depends on beta at the point itself (through v and W), which
+      // core's sweep does not allow for in its fixed point Jacobian -(20/3)/h^2: that derivative,
+      // 16 pi sigma^2 phi^4 rho0 h W^2 (~ 10 for a neutron star), is tiny next to (20/3)/h^2 (~ 7e3
+      // at h = 0.03), and J is refreshed before every sweep, so the converged solution is exact.
+      // j^i is 0 outside the matter (the hydro plugin writes it so).
+      const MatterSources& m = s.matter;
       const double phi2 = phi * phi;
-      const double k = 16.0 * std::numbers::pi * s.sigma2 * alpha * phi2 * phi2;
-      const double hh = s.enthalpy[idx];
-      const double jx = momentum_density(rho0, hh, w2, ux, alpha), jy = momentum_density(rho0, hh, w2, uy, alpha),
-                   jz = momentum_density(rho0, hh, w2, uz, alpha);
-      const bool in_matter = rho0 > 0;
-      n.x -= in_matter ? k * jx : 0.0;
-      n.y -= in_matter ? k * jy : 0.0;
-      n.z -= in_matter ? k * jz : 0.0;
+      const double k = 16.0 * std::numbers::pi * m.sigma2 * alpha * phi2 * phi2;
+      n.x -= k * m.momentum[0][idx];
+      n.y -= k * m.momentum[1][idx];
+      n.z -= k * m.momentum[2][idx];
     }
     return n;
   }

@@ -41,7 +41,6 @@ void declare(core::PluginBuilder& b) {
     m.count(memory_unknown_components, 3);
     if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
       layout->estimate_field(m, ctx.plugin(), fields::shift, 3);
-      layout->estimate_fields(m, ctx.plugin(), fields::fluid_sizes);
     }
   });
 

@@ -15,7 +15,6 @@ using core::TensorKind;
 
 namespace {
 
-const std::vector<TensorKind> scalar{TensorKind::scalar};
 const std::vector<TensorKind> vector{TensorKind::vector_x, TensorKind::vector_y, TensorKind::vector_z};
 
 /// Calls fn(std::bool_constant<hole>{}, std::bool_constant<matter>{}).
@@ -65,13 +64,6 @@ ShiftEquation::ShiftEquation(Grid& grid, const Fluid* fluid, const Puncture* pun
   eta_ = grid.field_id(fields::eta);
   ahat_ = grid.field_id(fields::ahat);
   beta_ = grid.add_field(fields::shift, vector, core::TimeParity::odd);
-  if (fluid_) {
-    // Registered here too (registering an existing field returns it), as the hamiltonian does.
-    rho0_ = grid.add_field(fields::rho0, scalar);
-    grid.add_field(fields::press, scalar);
-    enthalpy_ = grid.add_field(fields::enthalpy, scalar);
-    velocity_ = grid.add_field(fields::fluid_velocity, vector, core::TimeParity::odd);
-  }
   if (settings_.lattice > 0) {
     const double ratio = settings_.lattice / grid.finest().dx, p = std::round(std::log2(ratio));
     if (!(ratio >= 1 - 1e-9) || std::fabs(ratio - std::exp2(p)) > 1e-9 * ratio)
@@ -128,8 +120,9 @@ OuterBoundary ShiftEquation::boundary() const {
 std::vector<std::string> ShiftEquation::coefficients() const {
   // chi and eta are the unknowns of hamiltonian and lapse; ahat is filled on every level by its
   // owner and the puncture's terms are computed in the kernel, so none of them is restricted.
+  // The projections are formed by the hydro plugin on each level from its restricted inputs.
   if (!fluid_) return {};
-  return {fields::rho0, fields::enthalpy, fields::fluid_velocity};
+  return fluid_->source_inputs();
 }
 
 Sources ShiftEquation::sources(int level) const {
@@ -144,12 +137,7 @@ Sources ShiftEquation::sources(int level) const {
     s.x0 = lv.x(0) - x_bh[0], s.y0 = lv.y(0) - x_bh[1], s.z0 = lv.z(0) - x_bh[2];
   }
   s.dx = lv.dx;
-  if (fluid_) {
-    s.rho0 = grid_.data(rho0_, 0, level);
-    s.enthalpy = grid_.data(enthalpy_, 0, level);
-    for (int c = 0; c < 3; ++c) s.velocity[c] = grid_.data(velocity_, c, level);
-    s.sigma2 = fluid_->sigma() * fluid_->sigma();
-  }
+  if (fluid_) s.matter = matter_sources(grid_, *fluid_, level);
   s.source_scale = settings_.source_scale;
   s.coupling_scale = settings_.coupling_scale;
   s.inv_2h = 0.5 / lv.dx;

@@ -72,7 +72,6 @@ class ShiftEquation final : public EllipticEquation {
   const Puncture* puncture_;
   Settings settings_;
   int beta_ = -1, chi_ = -1, eta_ = -1, ahat_ = -1;
-  int rho0_ = -1, enthalpy_ = -1, velocity_ = -1;
   int mask_ = -1;
   // The puncture the mask was last built for.
   bool built_ = false;

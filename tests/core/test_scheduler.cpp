@@ -39,6 +39,19 @@ TEST_CASE("core.schedule.before_and_after", "[core][schedule]") {
   CHECK(names(build_schedule({&a, &b}), Bin::initial) == std::vector<std::string>{"a.y", "b.z", "a.x"});
 }
 
+TEST_CASE("core.schedule.after_a_capability", "[core][schedule]") {
+  // "capability.entry" orders against the entry of whichever active plugin implements the capability
+  // (a plugin orders itself against a role without naming the plugin); dropped when none does.
+  PluginDecl a = plugin("a"), b = plugin("b");
+  PluginBuilder(a).schedule(Bin::update, "follow", nothing).after("role.step");
+  PluginBuilder(b).implements("role");
+  PluginBuilder(b).schedule(Bin::update, "step", nothing);
+  CHECK(names(build_schedule({&a, &b}), Bin::update) == std::vector<std::string>{"b.step", "a.follow"});
+  PluginDecl c = plugin("c");
+  PluginBuilder(c).schedule(Bin::update, "follow", nothing).after("role.step");
+  CHECK(names(build_schedule({&c}), Bin::update) == std::vector<std::string>{"c.follow"});
+}
+
 TEST_CASE("core.schedule.cycle_and_bad_references", "[core][schedule]") {
   // A cycle, a reference to a missing entry of an active plugin, or across bins is an error.
   PluginDecl a = plugin("a");

@@ -21,11 +21,12 @@ TEST_CASE("plugins.lapse.point_term_is_eq_maxslice_hat", "[plugins][lapse]") {
   s.chi = &chi;
   s.puncture_phi = &punc;
   s.aa = &aa;
-  s.matter.rho0 = &rho0;
-  s.matter.press = &press;
-  s.matter.enthalpy = &h;
+  // rho_E = rho0 h - P and S = 3P, as the hydro plugin gives them for a static star.
+  const double energy = rho0 * h - press, trace = 3 * press;
+  s.matter.energy = &energy;
+  s.matter.trace = &trace;
   s.matter.sigma2 = sigma * sigma;
-  const lapse::LapseTerm<false> term{s};
+  const lapse::LapseTerm<true> term{s};
   const double phi = chi + punc;
   const double k = 0.875 * aa / std::pow(phi, 8) + 2 * std::numbers::pi * sigma * sigma * std::pow(phi, 4) * (rho0 + 7 * rho0 * rho0);
   const auto t = term.at(0, eta);

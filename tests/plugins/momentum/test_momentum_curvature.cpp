@@ -79,7 +79,7 @@ TEST_CASE("plugins.momentum.bowen_york_fill", "[plugins][momentum]") {
         for (int i = 0; i < lv.nx; ++i) {
           const std::array<double, 3> x{lv.x(i), lv.y(j), lv.z(k)};
           const auto a = ahat_at(*g, l, i, j, k);
-          const auto by = bowen_york(hole.p, hole.x, x);
+          const auto by = momentum::bowen_york(hole.p, hole.x, x);
           const double d[3] = {x[0] - hole.x[0], x[1] - hole.x[1], x[2] - hole.x[2]};
           const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
           const double cos_theta = (d[0] * hole.p[0] + d[1] * hole.p[1] + d[2] * hole.p[2]) / (r * std::sqrt(p2));
@@ -142,7 +142,7 @@ TEST_CASE("plugins.momentum.zhat_fill_is_exact_for_quadratic_w", "[plugins][mome
                 const double lw = dw[c][r] + dw[r][c] - (r == c ? 2.0 / 3.0 * div : 0.0);
                 REQUIRE(a[static_cast<std::size_t>(sym_index(r, c))] == Approx(factor * lw).margin(1e-10));
               }
-            REQUIRE(g->data(aa_id, 0, l)[lv.at(i, j, k)] == Approx(squared_norm(a)).epsilon(1e-14));
+            REQUIRE(g->data(aa_id, 0, l)[lv.at(i, j, k)] == Approx(momentum::squared_norm(a)).epsilon(1e-14));
           }
     }
   }

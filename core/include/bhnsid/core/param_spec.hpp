@@ -14,6 +14,12 @@ enum class ParamType { boolean, integer, real, string, keyword, real_vector };
 /// A resolved value; keywords are held as strings.
 using ParamValue = std::variant<bool, std::int64_t, double, std::string, std::vector<double>>;
 
+/// How a parameter changes from one resolution to the next in a convergence series (bhnsid
+/// validate): a plugin declares it, so that the core refines a configuration without knowing its
+/// plugins. doubles: the value times 2 per halving of the spacing (a point count, a width in
+/// points); halves: the value divided by 2 (a spacing).
+enum class Refinement { none, doubles, halves };
+
 struct ParamSpec {
   std::string name;
   ParamType type = ParamType::real;
@@ -27,6 +33,7 @@ struct ParamSpec {
   std::vector<std::string> keywords;  ///< allowed values of a keyword parameter
   int length = -1;                    ///< required length of a real vector, -1 for any
   bool steerable = false;             ///< may change between the runs of a sequence
+  Refinement refinement = Refinement::none;  ///< how a convergence series changes it
 
   bool required() const { return !default_value.has_value(); }
 };

@@ -49,6 +49,8 @@ class ParamHandle {
   ParamHandle& less_than(double hi);
   ParamHandle& length(int n);
   ParamHandle& steerable();
+  /// How the value follows the spacing in a convergence series (integers and reals only).
+  ParamHandle& refines(Refinement how);
 
  private:
   ParamSpec& spec();
@@ -60,6 +62,8 @@ class ScheduleHandle {
  public:
   ScheduleHandle(PluginDecl& decl, std::size_t index) : decl_(&decl), index_(index) {}
   ScheduleHandle& doc(std::string text);
+  /// Order against "plugin.entry", or "capability.entry" (the entry of whichever active plugin
+  /// implements the capability); ignored when no active plugin is or implements that name.
   ScheduleHandle& before(std::string full_name);
   ScheduleHandle& after(std::string full_name);
 

@@ -87,6 +87,20 @@ struct Level {
   }
 };
 
+/// Calls fn(p) for the array index p of every stored point of a level (ghosts excluded), OpenMP
+/// over planes and each row an omp simd loop: for pointwise densities and fills, where fn is an
+/// inlinable lambda without branches (selects vectorise, branches do not).
+template <class Fn>
+inline void for_stored_points(const Level& lv, Fn&& fn) {
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < lv.nz; ++k)
+    for (int j = 0; j < lv.ny; ++j) {
+      const std::ptrdiff_t p0 = lv.at(0, j, k);
+#pragma omp simd
+      for (std::ptrdiff_t p = p0; p < p0 + lv.nx; ++p) fn(p);
+    }
+}
+
 struct FieldInfo {
   std::string name;
   std::vector<core::TensorKind> components;  ///< one entry per component (1 or 3 for equations)

@@ -15,6 +15,7 @@
 #include "bhnsid/core/plugin.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
+#include "../../../support/test_fluid.hpp"
 #include "problem.hpp"
 
 namespace bhnsid::momentum::test {
@@ -24,16 +25,8 @@ using core::Bin;
 using core::Context;
 using core::TensorKind;
 
-class TestFluid final : public bhnsid::Fluid {
- public:
-  double sigma() const override { return sigma_value; }
-  bool moving() const override { return true; }
-  std::array<double, 3> centre() const override { return {0.0, 0.0, 0.0}; }
-  double sigma_value = 1;
-};
-
 struct State {
-  std::shared_ptr<TestFluid> fluid = std::make_shared<TestFluid>();
+  std::shared_ptr<bhnsid::test::FieldVelocityFluid> fluid = std::make_shared<bhnsid::test::FieldVelocityFluid>();
   Problem problem;
 };
 
@@ -44,15 +37,13 @@ void for_points(const Level& lv, Fn&& fn) {
       for (int i = 0; i < lv.nx; ++i) fn(lv.at(i, j, k), Vec3{lv.x(i), lv.y(j), lv.z(k)});
 }
 
-void fill(Grid& grid, const Problem& problem, double scale, const std::string& omit) {
+void fill(Grid& grid, const bhnsid::test::FieldVelocityFluid& fluid, const Problem& problem, double scale,
+          const std::string& omit) {
   const std::vector<TensorKind> scalar{TensorKind::scalar};
-  const std::vector<TensorKind> vector{TensorKind::vector_x, TensorKind::vector_y, TensorKind::vector_z};
   const int chi = omit == "chi" ? -1 : grid.add_field(fields::chi, scalar);
   const int eta = omit == "eta" ? -1 : grid.add_field(fields::eta, scalar);
   const int pphi = omit == "puncture_phi" ? -1 : grid.add_field(fields::puncture_phi, scalar);
-  const int rho0 = grid.add_field(fields::rho0, scalar), press = grid.add_field(fields::press, scalar),
-            enthalpy = grid.add_field(fields::enthalpy, scalar);
-  const int vel = grid.add_field(fields::fluid_velocity, vector, core::TimeParity::odd);
+  const auto [rho0, press, enthalpy, vel] = fluid.attach(grid);
   double max_v2 = 0;
   for (int l = 0; l < grid.num_levels(); ++l) {
     const Level& lv = grid.level(l);
@@ -110,7 +101,7 @@ void declare(core::PluginBuilder& b) {
 
   b.schedule(Bin::setup, "fields", [state](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");
-     fill(grid, state->problem, ctx.params().real("velocity_scale"), ctx.params().string("omit"));
+     fill(grid, *state->fluid, state->problem, ctx.params().real("velocity_scale"), ctx.params().string("omit"));
    })
       .before("momentum.setup")
       .doc("chi, eta, puncture_phi and the fluid fields on every level");

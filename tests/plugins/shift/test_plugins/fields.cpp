@@ -15,6 +15,7 @@
 #include "bhnsid/core/plugin.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
+#include "../../../support/test_fluid.hpp"
 #include "support/manufactured.hpp"
 
 namespace {
@@ -27,12 +28,6 @@ using bhnsid::core::TensorKind;
 using namespace bhnsid::shift::test;
 namespace fields = bhnsid::fields;
 
-class TestFluid final : public bhnsid::Fluid {
- public:
-  double sigma() const override { return mms_sigma; }
-  bool moving() const override { return true; }
-  std::array<double, 3> centre() const override { return {0, 0, 0}; }
-};
 
 const std::vector<TensorKind> scalar{TensorKind::scalar};
 const std::vector<TensorKind> vector{TensorKind::vector_x, TensorKind::vector_y, TensorKind::vector_z};
@@ -73,9 +68,9 @@ void declare(bhnsid::core::PluginBuilder& b) {
        });
      }
      if (!ctx.params().boolean("matter")) return;
-     const int rho0 = grid.add_field(fields::rho0, scalar), press = grid.add_field(fields::press, scalar),
-               h = grid.add_field(fields::enthalpy, scalar);
-     const int vel = grid.add_field(fields::fluid_velocity, vector, bhnsid::core::TimeParity::odd);
+     auto fluid = std::make_shared<bhnsid::test::FieldVelocityFluid>();
+     fluid->sigma_value = mms_sigma;
+     const auto [rho0, press, h, vel] = fluid->attach(grid);
      // The finest level only: the shift lists the fluid fields as coefficients, so the multigrid
      // must restrict them to the coarse levels itself.
      for_all_points(grid.finest(), [&](const std::array<double, 3>& x, std::ptrdiff_t p) {
@@ -85,7 +80,7 @@ void declare(bhnsid::core::PluginBuilder& b) {
        grid.data(h, 0, 0)[p] = f.enthalpy;
        for (int c = 0; c < 3; ++c) grid.data(vel, c, 0)[p] = f.velocity[static_cast<std::size_t>(c)];
      });
-     ctx.publish<bhnsid::Fluid>("hydro", std::make_shared<TestFluid>());
+     ctx.publish<bhnsid::Fluid>("hydro", fluid);
    })
       .after("grid.create")
       .doc("register and fill chi, eta, puncture_phi, ahat (and the fluid), publish hydro");
