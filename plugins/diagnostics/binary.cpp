@@ -14,18 +14,10 @@ double matter_angular_momentum(const Grid& grid, double sigma) {
   const double *jx = grid.data(j, 0, 0), *jy = grid.data(j, 1, 0);
   const auto density = std::make_unique_for_overwrite<double[]>(lv.size);  // integrate reads no ghost
   double* d = density.get();
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < lv.nz; ++k)
-    for (int jj = 0; jj < lv.ny; ++jj) {
-      const std::ptrdiff_t p0 = lv.at(0, jj, k);
-      const double y = lv.y(jj), x0 = lv.x(0), h = lv.dx;
-#pragma omp simd
-      for (int i = 0; i < lv.nx; ++i) {
-        const std::ptrdiff_t p = p0 + i;
-        const double phi = (punc ? punc[p] : 0.0) + chi[p], phi2 = phi * phi, phi4 = phi2 * phi2;
-        d[p] = phi4 * phi4 * phi2 * ((x0 + h * i) * jy[p] - y * jx[p]);
-      }
-    }
+  for_stored_points_xy(lv, [&](std::ptrdiff_t p, double x, double y) {
+    const double phi = (punc ? punc[p] : 0.0) + chi[p], phi2 = phi * phi, phi4 = phi2 * phi2;
+    d[p] = phi4 * phi4 * phi2 * (x * jy[p] - y * jx[p]);
+  });
   const double s2 = sigma * sigma;
   // x j^y - y j^x is even under z -> -z (j^x, j^y even, physics-notes §8).
   return s2 * s2 * grid.integrate(d, Parity{}, 0);

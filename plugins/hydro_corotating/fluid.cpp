@@ -32,31 +32,23 @@ struct Inputs {
   const double* beta[3] = {nullptr, nullptr, nullptr};
 };
 
-/// Calls row(j, k, p0, ux, uy, uz, lorentz2, alpha, phi) per point of each stored row: the loop
-/// nest shared by the projections and the rest mass. The matter is selected where rho0 > 0 by the
+/// Calls fn(p, ux, uy, uz, lorentz2, alpha, phi) per stored point: the loop shared by the
+/// projections and the rest mass. The matter is selected where rho0 > 0 by the
 /// callers (not branched on), so that the rows vectorise.
 template <bool Shift, class Fn>
 void for_points(const Level& lv, const Inputs& in, double omega_hat, Fn&& fn) {
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < lv.nz; ++k)
-    for (int j = 0; j < lv.ny; ++j) {
-      const std::ptrdiff_t p0 = lv.at(0, j, k);
-      const double y = lv.y(j), x0 = lv.x(0), h = lv.dx;
-#pragma omp simd
-      for (int i = 0; i < lv.nx; ++i) {
-        const std::ptrdiff_t p = p0 + i;
-        // U = beta + Omegahat xi, xi = (-y, x, 0).
-        double ux = -omega_hat * y, uy = omega_hat * (x0 + h * i), uz = 0.0;
-        if constexpr (Shift) {
-          ux += in.beta[0][p];
-          uy += in.beta[1][p];
-          uz += in.beta[2][p];
-        }
-        const double phi = in.puncture_phi[p] + in.chi[p];
-        const double w2 = lorentz_squared(phi, in.eta[p], ux, uy, uz);
-        fn(p, ux, uy, uz, w2, in.eta[p] / phi, phi);
-      }
+  for_stored_points_xy(lv, [&](std::ptrdiff_t p, double x, double y) {
+    // U = beta + Omegahat xi, xi = (-y, x, 0).
+    double ux = -omega_hat * y, uy = omega_hat * x, uz = 0.0;
+    if constexpr (Shift) {
+      ux += in.beta[0][p];
+      uy += in.beta[1][p];
+      uz += in.beta[2][p];
     }
+    const double phi = in.puncture_phi[p] + in.chi[p];
+    const double w2 = lorentz_squared(phi, in.eta[p], ux, uy, uz);
+    fn(p, ux, uy, uz, w2, in.eta[p] / phi, phi);
+  });
 }
 
 Inputs inputs(const Grid& grid, int level, int rho0, int press, int enthalpy, int chi, int eta, int puncture_phi) {

@@ -87,18 +87,25 @@ struct Level {
   }
 };
 
-/// Calls fn(p) for the array index p of every stored point of a level (ghosts excluded), OpenMP
-/// over planes and each row an omp simd loop: for pointwise densities and fills, where fn is an
-/// inlinable lambda without branches (selects vectorise, branches do not).
+/// Calls fn(p, x, y) for the array index p and the coordinates of every stored point of a level
+/// (ghosts excluded), OpenMP over planes and each row an omp simd loop: for pointwise densities and
+/// fills, where fn is an inlinable lambda without branches (selects vectorise, branches do not).
 template <class Fn>
-inline void for_stored_points(const Level& lv, Fn&& fn) {
+inline void for_stored_points_xy(const Level& lv, Fn&& fn) {
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < lv.nz; ++k)
     for (int j = 0; j < lv.ny; ++j) {
       const std::ptrdiff_t p0 = lv.at(0, j, k);
+      const double y = lv.y(j), x0 = lv.x(0), h = lv.dx;
 #pragma omp simd
-      for (std::ptrdiff_t p = p0; p < p0 + lv.nx; ++p) fn(p);
+      for (int i = 0; i < lv.nx; ++i) fn(p0 + i, x0 + h * i, y);
     }
+}
+
+/// The same without the coordinates: fn(p).
+template <class Fn>
+inline void for_stored_points(const Level& lv, Fn&& fn) {
+  for_stored_points_xy(lv, [&](std::ptrdiff_t p, double, double) { fn(p); });
 }
 
 struct FieldInfo {
