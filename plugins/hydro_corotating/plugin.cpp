@@ -68,7 +68,8 @@ void declare(core::PluginBuilder& b) {
       .less_than(1.0);
   b.real("sigma_guess").doc("initial sigma; 0: R_iso(rho_max) / Rhat with Rhat = (1 - x_a)/2 (physics-notes §4.7)").default_value(0.0).at_least(0);
   b.real("tolerance")
-      .doc("converged when |d sigma/sigma| and |d C_B/C_B| of an outer step are below this (the paper: 1e-4)")
+      .doc("converged when the relative changes of sigma, C_B (and Omegahat with a black hole) of an outer step and of M0 "
+           "in the last reset are below this (the paper: 1e-4)")
       .default_value(1e-6)
       .greater_than(0);
   b.boolean("iterate")
