@@ -14,6 +14,7 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -139,7 +140,11 @@ struct Refined {
     const bool doubles = spec->refinement == Refinement::doubles;
     if (spec->type == ParamType::integer) {
       const std::int64_t v = std::get<std::int64_t>(base);
-      if (doubles) return fmt::format("{}", v << q);  // bounded: the finest level is checked before any run
+      if (doubles) {
+        if (v < 0 || v > (std::numeric_limits<std::int64_t>::max() >> q))
+          throw InputError(fmt::format("validate: {} = {} cannot be doubled {} times", key, v, q));
+        return fmt::format("{}", v << q);
+      }
       if (v % (std::int64_t{1} << q) != 0)
         throw InputError(fmt::format("validate: {} = {} cannot be halved {} times exactly", key, v, q));
       return fmt::format("{}", v >> q);
@@ -229,6 +234,9 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
                                  "list it in plugins or name it with --with",
                                  parfile, residual_report::capability));
   const std::vector<Refined> refined = refined_parameters(config, parfile);
+  // Every level's values now, so that one that cannot be formed is an input error before any run.
+  for (int q = 0; q < opt.levels; ++q)
+    for (const Refined& r : refined) (void)r.at(q);
   const fs::path dir = opt.output.empty() ? fs::path("runs") / (fs::path(parfile).stem().string() + "_validate") : fs::path(opt.output);
   const std::string self = fs::read_symlink("/proc/self/exe").string();
   const auto level_args = [&](int q, const std::string& command, const fs::path& parfile_copy) {
@@ -291,7 +299,14 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
       if (value.is_number()) lv.scalars[key] = value.get<double>();
     read_axis(lv);
     say("validate:   done in {:.1f} s\n", lv.seconds);
-    if (q == 0) equations = reported_equations(lv, opt.only);
+    if (q == 0) {
+      try {
+        equations = reported_equations(lv, opt.only);
+      } catch (const InputError&) {
+        directory.abandon();  // bad input (--only) leaves no directory behind
+        throw;
+      }
+    }
   }
 
   json out;

@@ -65,8 +65,8 @@ NewtonResult solve_sigma_bernoulli(const std::vector<AxisPoint>& points, const A
     }
     if (!(c > 0))
       throw core::RunFailure(fmt::format("hydro_corotating: the Newton solve gave C_B = {} <= 0 at sigma = {}", c, s));
-    if (std::fabs(lambda * ds) <= 1e-12 * std::fabs(s) && std::fabs(lambda * dc) <= 1e-12 * c)
-      return {s, c, it};
+    // Converged on a full step only: a step shrunk by the fold guard is small away from the root too.
+    if (lambda == 1 && std::fabs(ds) <= 1e-12 * std::fabs(s) && std::fabs(dc) <= 1e-12 * c) return {s, c, it};
   }
   throw core::RunFailure(fmt::format("hydro_corotating: the (sigma, C_B) Newton solve did not converge in 50 iterations "
                                      "(last sigma = {}, C_B = {}, residuals {:.3e}, {:.3e})",
@@ -156,8 +156,9 @@ OrbitResult solve_sigma_omega_bernoulli(const std::vector<OrbitPoint>& points, c
     }
     if (!(c > 0))
       throw core::RunFailure(fmt::format("hydro_corotating: the Newton solve gave C_B = {} <= 0 at sigma = {}", c, s));
-    if (std::fabs(lambda * dq[0]) <= 1e-12 * std::fabs(s) && std::fabs(lambda * dq[1]) <= 1e-12 * std::fabs(w) &&
-        std::fabs(lambda * dq[2]) <= 1e-12 * c)
+    // Converged on a full step only: a step shrunk by a guard is small away from the root too.
+    if (lambda == 1 && std::fabs(dq[0]) <= 1e-12 * std::fabs(s) && std::fabs(dq[1]) <= 1e-12 * std::fabs(w) &&
+        std::fabs(dq[2]) <= 1e-12 * c)
       return {s, w, c, it};
   }
   throw core::RunFailure(fmt::format("hydro_corotating: the (sigma, Omegahat, C_B) Newton solve did not converge in 50 "

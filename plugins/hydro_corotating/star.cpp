@@ -125,6 +125,9 @@ std::vector<double> conformal_factor_field(Grid& grid, int chi, int puncture_phi
 StepReport Star::step() {
   StepReport report;
   report.iteration = static_cast<int>(history_.size()) + 1;
+  // Set again below when this step converges: the loop may go on for another check's sake, and a
+  // step that resets the density must let the black hole follow.
+  fluid_->converged = false;
   StarConstants& now = fluid_->constants;
   report.before = now;
   report.after = now;

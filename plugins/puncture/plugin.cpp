@@ -107,6 +107,23 @@ void declare(core::PluginBuilder& b) {
       .before("shift.setup")
       .doc("with mass_ratio > 0: Mhat_BH and xhat_BH from the initial star, before the shift builds its cube");
 
+  b.schedule(Bin::initial, "binary_initial", [hole](Context& ctx) {
+     const double mu = ctx.params().real("mass_ratio");
+     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     if (!(mu > 0) || !fluid) return;
+     // The star's initial data may have changed sigma (the hole shrinks it, sigma_0 = R_iso/(Rhat
+     // phi_ext^2)): the first field solve must see Mhat_BH = mu M_NS/sigma with that sigma.
+     const HoleValues h = scaled_hole(ctx.services().get<Grid>("grid"), *fluid,
+                                      ctx.services().get<TovFamily>("tov_family"), mu, fluid->initial_rest_mass());
+     hole->mass = h.mass;
+     hole->x = h.position;
+     if (!h.moved.empty()) ctx.log().info("puncture: {}", h.moved);
+     ctx.log().info("puncture of the binary: Mhat_BH = {:.9g}, xhat_BH = {:.9g} for the initial sigma = {:.9g}", hole->mass,
+                    hole->x[0], fluid->sigma());
+   })
+      .after("hydro.initial_data")
+      .doc("with mass_ratio > 0: the hole again from the initial star, whose initial data set sigma_0");
+
   b.schedule(Bin::update, "binary_update", [hole](Context& ctx) {
      const double mu = ctx.params().real("mass_ratio");
      const auto* fluid = ctx.services().find<Fluid>("hydro");

@@ -38,15 +38,15 @@ TEST_CASE("plugins.puncture.balancing_momentum_of_moving_dust", "[plugins][punct
 TEST_CASE("plugins.puncture.binary_hole_is_scaled_to_the_star", "[plugins][puncture]") {
   // mass_ratio = 1 beside the TOV star of rho_max = 0.1 held fixed (iterate = false, so the star is
   // settled at once and the hole keeps its start): Mhat_BH sigma = M_NS(M0) = 0.126957 for
-  // M0 = 0.135313 (tov.py, physics-notes §6.1), sigma = R_iso/Rhat = 0.873163/0.4 given (so that the
-  // star's own start, which divides it by phi_ext^2 after the hole is placed, keeps it), and
+  // M0 = 0.135313 (tov.py, physics-notes §6.1), with the sigma of the initial data (R_iso/Rhat over
+  // phi_ext^2: the hole is placed again after the star's initial data), and
   // xhat_BH = -xhat_C = -0.6, a point of the grid, so moved off it by 1e-3 dx.
   test::TempDir dir;
   const auto par = dir.write("b.yaml",
                              "plugins: [grid, multigrid, eos_polytrope, tov, puncture, hamiltonian, lapse, momentum, "
                              "shift, hydro_corotating, diagnostics]\n"
                              "grid:\n  n: 32\n  dx: 0.12\n"
-                             "hydro_corotating:\n  rho_max: 0.1\n  x_a: 0.2\n  iterate: false\n  sigma_guess: 2.1829075\n"
+                             "hydro_corotating:\n  rho_max: 0.1\n  x_a: 0.2\n  iterate: false\n"
                              "puncture:\n  mass_ratio: 1.0\n");
   const auto out = dir.path() / "run";
   const test::ProcessResult r = test::run_bhnsid({"run", par.string(), "--output", out.string()});
