@@ -137,7 +137,9 @@ StepReport Star::step() {
     history_.push_back(report);
     return report;
   }
+  // The fields of the last solve, read by the Newton solve and by the reset (unchanged between them).
   const std::vector<double> alpha = lapse_field(grid_, chi_, eta_, puncture_phi_);
+  const std::vector<double> phi = conformal_factor_field(grid_, chi_, puncture_phi_);
   const double rhat = rhat_star(), h_max = eos_.enthalpy(settings_.rho_max);
   auto at = [&](const std::vector<double>& f, double x) { return grid_.interpolate(f.data(), Parity{}, 0, {x, 0, 0}); };
   double omega = 0;
@@ -157,7 +159,6 @@ StepReport Star::step() {
     const NewtonResult r = solve_sigma_bernoulli(points, model, now.sigma);
     solved = {r.sigma, r.bernoulli};
   } else {
-    const std::vector<double> phi = conformal_factor_field(grid_, chi_, puncture_phi_);
     std::vector<double> beta_y(grid_.finest().size, 0.0);
     if (grid_.has_field(fields::shift)) {
       const double* b = grid_.data(grid_.field_id(fields::shift), 1, 0);
@@ -200,7 +201,7 @@ StepReport Star::step() {
     return report;
   }
   const double m0_before = fluid_->rest_mass();
-  report.matter_points = bernoulli_reset(report.after);
+  report.matter_points = bernoulli_reset(report.after, alpha, phi);
   now.sigma = report.after.sigma;
   now.bernoulli = report.after.bernoulli;
   now.omega_hat = report.after.omega_hat;
@@ -212,14 +213,12 @@ StepReport Star::step() {
   return report;
 }
 
-int Star::bernoulli_reset(const StarConstants& next) {
+int Star::bernoulli_reset(const StarConstants& next, const std::vector<double>& alpha, const std::vector<double>& phi) {
   const Level& lv = grid_.finest();
   const StarConstants& now = fluid_->constants;
   const double rhat = rhat_star();
   const FrozenProfileSolution model_new = family_.frozen_profile(settings_.rho_max, rhat, model_sigma(next.sigma));
   const FrozenProfileSolution model_old = family_.frozen_profile(settings_.rho_max, rhat, model_sigma(now.sigma));
-  const std::vector<double> alpha = lapse_field(grid_, chi_, eta_, puncture_phi_);
-  const std::vector<double> phi = conformal_factor_field(grid_, chi_, puncture_phi_);
   const double* beta[3] = {nullptr, nullptr, nullptr};
   if (grid_.has_field(fields::shift))
     for (int c = 0; c < 3; ++c) beta[c] = grid_.data(grid_.field_id(fields::shift), c, 0);

@@ -61,8 +61,9 @@ class Star {
   /// Fills press and enthalpy from rho0 on the finest level.
   void fill_thermodynamics();
   /// rho0 from the Bernoulli equation with the sigma-modelled lapse and conformal factor, the shift
-  /// and Omegahat; returns the matter points.
-  int bernoulli_reset(const StarConstants& next);
+  /// and Omegahat, from the last solve's alpha and phi (finest level, ghosts filled); returns the
+  /// matter points.
+  int bernoulli_reset(const StarConstants& next, const std::vector<double>& alpha, const std::vector<double>& phi);
   /// delta = Mhat_BH/(2 dhat), the hole's conformal factor across the star (0 without a hole).
   double hole_delta() const;
   /// The model's sigma: sigma (1 + delta)^2 (physics-notes §4.5, "with a black hole present").
