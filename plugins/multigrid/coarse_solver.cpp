@@ -17,6 +17,7 @@ double* CoarseSolver::value(const Unknown& x, int level, bool residual) {
 
 void CoarseSolver::index_unknowns(int level) {
   const Level& lv = solver_.grid_.level(level);
+  const std::vector<Unknown> previous = std::move(unknowns_);
   unknowns_.clear();
   slot_offset_.clear();
   std::size_t offset = 0;
@@ -42,7 +43,7 @@ void CoarseSolver::index_unknowns(int level) {
             static_cast<std::size_t>(x.point)] = static_cast<std::ptrdiff_t>(r);
   }
   level_ = level;
-  factorised_ = false;
+  factorised_ = factorised_ && level == factorised_level_ && unknowns_ == previous;
 }
 
 void CoarseSolver::residual_vector(int level, Eigen::VectorXd& out) {
@@ -118,6 +119,7 @@ void CoarseSolver::factorise(int level, const Eigen::VectorXd& r0) {
     throw core::RunFailure(fmt::format("multigrid: the coarsest level's Jacobian ({} unknowns) is singular: {}",
                                        unknowns_.size(), lu_.lastErrorMessage()));
   factorised_ = true;
+  factorised_level_ = level;
 }
 
 void CoarseSolver::solve(int level) {

@@ -16,8 +16,9 @@ class FasSolver;
 class CoarseSolver {
  public:
   explicit CoarseSolver(FasSolver& solver) : solver_(solver) {}
-  /// Forgets the indexed unknowns and the factorisation: the held points (excision masks) may
-  /// change between solves, e.g. when the black hole moves.
+  /// Indexes the unknowns again at the next solve: the held points (excision masks) may change
+  /// between solves, e.g. when the black hole moves. The factorisation is kept when they did not
+  /// (an outer iteration's next solve): it is a chord Jacobian, rebuilt when it stops converging.
   void reset() { level_ = -1; }
   void solve(int level);
 
@@ -26,6 +27,7 @@ class CoarseSolver {
     int slot, comp;
     std::ptrdiff_t point;
     int i, j, k;
+    bool operator==(const Unknown& o) const { return slot == o.slot && comp == o.comp && point == o.point; }
   };
   void index_unknowns(int level);
   void residual_vector(int level, Eigen::VectorXd& out);
@@ -34,6 +36,7 @@ class CoarseSolver {
 
   FasSolver& solver_;
   int level_ = -1;
+  int factorised_level_ = -1;  // the level lu_ belongs to
   std::vector<Unknown> unknowns_;
   std::vector<std::ptrdiff_t> row_of_;  // per (slot, comp, point) -> row, -1 if held
   std::vector<std::size_t> slot_offset_;

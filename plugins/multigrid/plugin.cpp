@@ -32,6 +32,7 @@ Settings settings_from(const core::ParamSection& p) {
   s.omega = p.real("omega");
   s.fmg = p.boolean("fmg");
   s.fmg_cycles = static_cast<int>(p.integer("fmg_cycles"));
+  s.warm_start = p.boolean("warm_start");
   s.tau_factor = p.real("tau_factor");
   s.abs_tolerance = p.real("abs_tolerance");
   s.max_cycles = static_cast<int>(p.integer("max_cycles"));
@@ -102,6 +103,10 @@ void declare(core::PluginBuilder& b) {
       .greater_than(0)
       .less_than(2);
   b.boolean("fmg").doc("start with full multigrid: solve the coarsest level, then interpolate and cycle level by level").default_value(true);
+  b.boolean("warm_start")
+      .doc("after a converged solve, the next one (an outer iteration's) cycles from its solution instead of "
+           "an FMG start")
+      .default_value(true);
   b.integer("fmg_cycles").doc("cycles on each level during the FMG start").default_value(std::int64_t{1}).at_least(1);
   b.real("tau_factor")
       .doc("converged when, for every equation, rms residual <= tau_factor * rms truncation-error estimate "
@@ -113,7 +118,7 @@ void declare(core::PluginBuilder& b) {
   b.integer("min_cycles").doc("cycles after the FMG start before convergence is accepted (the first measures tau)").default_value(std::int64_t{1}).at_least(1);
   b.real("stall_factor").doc("a cycle that reduces the residual by less than this factor counts as stalled").default_value(0.95).greater_than(0).at_most(1);
   b.integer("stall_cycles").doc("stalled cycles in a row that end the solve as failed").default_value(std::int64_t{3}).at_least(1);
-  b.real("divergence_factor").doc("failed when a residual grows to this multiple of its value after the FMG start").default_value(1e4).greater_than(1);
+  b.real("divergence_factor").doc("failed when a residual grows to this multiple of the larger of its start value and |tau|").default_value(1e4).greater_than(1);
 
   b.schedule(Bin::solve, "solve", [state](Context& ctx) {
      if (!state->solver) {

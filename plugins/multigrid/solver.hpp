@@ -25,6 +25,7 @@ struct Settings {
   double omega = 1.15;           ///< over-relaxation of the point Newton steps
   bool fmg = true;
   int fmg_cycles = 1;
+  bool warm_start = true;        ///< after a converged solve, the next starts from its fields (no FMG)
   double tau_factor = 1e-3;      ///< converged when |r| <= tau_factor |tau| for every equation
   double abs_tolerance = 0;      ///< ... or |r| <= abs_tolerance (0: off)
   int max_cycles = 30;
@@ -53,6 +54,7 @@ struct SolveReport {
   /// finest level: what the benchmark turns into memory bandwidth.
   double fine_sweep_seconds = 0;
   int fine_sweeps = 0;
+  bool fmg_start = false;  ///< the solve began with FMG (else from the last converged solution)
   std::string message;
 };
 
@@ -138,6 +140,7 @@ class FasSolver {
   int fine_residual_ = -1;      // the finest level's residual, shared by the equations; -1: one level
   std::unique_ptr<CoarseSolver> coarse_;
   SolveReport report_;
+  bool warm_ = false;  ///< the fields hold the last converged solve's solution
   // Pointer tables handed to the equations: [slot][level][component].
   std::vector<std::vector<std::vector<const double*>>> rhs_ptrs_;
 };

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -70,12 +71,28 @@ double Family::central_density_from_rest_mass(double m0) const {
   double hi = top.central_density, lo = 0.5 * hi;
   for (int i = 0; star(lo).rest_mass >= m0; ++i, lo *= 0.5)
     if (i > 200) throw core::RunFailure(fmt::format("TOV: cannot bracket the star of rest mass {}", m0));
-  // Bisection in ln rho_c: M0 increases monotonically with rho_c on the stable branch.
-  while (std::log(hi / lo) > 1e-14) {
-    const double mid = std::sqrt(lo * hi);
-    (star(mid).rest_mass < m0 ? lo : hi) = mid;
+  // Regula falsi (Illinois) in ln rho_c: M0 increases monotonically with rho_c on the stable branch,
+  // so the bracket holds; the binary asks for M_NS(M0) every outer iteration, and bisection to
+  // 1e-14 took 46 TOV solves (11% of the paper example's run at n = 64), this about 8.
+  double a = std::log(lo), b = std::log(hi);
+  double fa = star(lo).rest_mass - m0, fb = top.rest_mass - m0;
+  int side = 0;
+  for (int i = 0; i < 200 && b - a > 1e-14; ++i) {
+    const double c = fb == fa ? 0.5 * (a + b) : b - fb * (b - a) / (fb - fa);
+    const double mid = std::clamp(c, a + 0.01 * (b - a), b - 0.01 * (b - a));  // never stall at an end
+    const double fm = star(std::exp(mid)).rest_mass - m0;
+    if (fm == 0 || std::fabs(fm) <= 1e-15 * m0) return std::exp(mid);
+    if ((fm < 0) == (fa < 0)) {
+      a = mid, fa = fm;
+      if (side == -1) fb *= 0.5;
+      side = -1;
+    } else {
+      b = mid, fb = fm;
+      if (side == 1) fa *= 0.5;
+      side = 1;
+    }
   }
-  return std::sqrt(lo * hi);
+  return std::exp(0.5 * (a + b));
 }
 
 TovStar Family::star_from_rest_mass(double m0) const { return star(central_density_from_rest_mass(m0)); }
