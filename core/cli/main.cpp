@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
         ->allow_extra_args(false);  // one folder per flag, so a following parameter file stays positional
   };
   std::string parfile, output;
-  bool force = false, yaml = false;
+  bool force = false, yaml = false, verbose = false;
   std::vector<std::string> plugin_names;
 
   auto* run = app.add_subcommand("run", "validate, then run a parameter file and write its run directory");
@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
   run->add_option("--set", common.overrides, "override a parameter: section.key=value (repeatable)")->allow_extra_args(false);
   run->add_option("--output", output, "run directory (default runs/<parfile stem>)");
   run->add_flag("--force", force, "replace an existing run directory");
+  run->add_flag("--verbose", verbose, "print log.txt's detail lines too (every multigrid cycle, every plugin step)");
   add_plugin_path(run);
 
   auto* check = app.add_subcommand("check", "validate a parameter file completely without running it (exit 0 or 2)");
@@ -113,7 +114,7 @@ int main(int argc, char** argv) {
     // must not fail it. Every other command's result is what it prints: the signals keep their
     // default actions (`bhnsid params | head` ends quietly) and a failed write is an error.
     if (run->parsed() || validate->parsed()) core::install_interrupt_handlers();
-    if (run->parsed()) return cli::cmd_run(parfile, common, output, force);
+    if (run->parsed()) return cli::cmd_run(parfile, common, output, force, verbose);
     if (validate->parsed()) return cli::cmd_validate(parfile, common, vopt);
     int code = core::exit_internal;
     try {

@@ -43,6 +43,16 @@ void Context::set_scalar(const std::string& name, double value) {
   }
 }
 
+void Context::show_progress(const std::string& name, double value) {
+  set_scalar(name, value);
+  auto& shown = state_->progress;
+  auto it = std::find_if(shown.begin(), shown.end(), [&](const auto& s) { return s.first == name; });
+  if (it == shown.end())
+    shown.emplace_back(name, value);
+  else
+    it->second = value;
+}
+
 int Context::iteration() const { return state_->iteration; }
 const std::filesystem::path& Context::run_directory() const { return state_->run_dir; }
 

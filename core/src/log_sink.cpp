@@ -22,11 +22,14 @@ void LogSink::open_file(const std::filesystem::path& partial) {
   partial_ = partial;
 }
 
-void LogSink::write(bool warning, const std::string& prefix, const std::string& message) {
+void LogSink::write(Level level, const std::string& prefix, const std::string& message) {
+  const bool warning = level == Level::warning;
   const std::string line = (prefix.empty() ? "" : "[" + prefix + "] ") + (warning ? "warning: " : "") + message + "\n";
   std::lock_guard<std::mutex> lock(mutex_);
-  std::fputs(line.c_str(), warning ? stderr : stdout);
-  std::fflush(warning ? stderr : stdout);
+  if (level != Level::detail || verbose_) {
+    std::fputs(line.c_str(), warning ? stderr : stdout);
+    std::fflush(warning ? stderr : stdout);
+  }
   if (file_ && !failed_) {
     // Flushed per line so that a long run's progress can be followed with tail -f.
     if (std::fputs(line.c_str(), file_) < 0 || std::fflush(file_) != 0) failed_ = true;
@@ -51,10 +54,13 @@ void LogSink::abandon() {
 }
 
 void Log::info(const std::string& message) const {
-  if (sink_) sink_->write(false, prefix_, message);
+  if (sink_) sink_->write(LogSink::Level::info, prefix_, message);
 }
 void Log::warn(const std::string& message) const {
-  if (sink_) sink_->write(true, prefix_, message);
+  if (sink_) sink_->write(LogSink::Level::warning, prefix_, message);
+}
+void Log::detail(const std::string& message) const {
+  if (sink_) sink_->write(LogSink::Level::detail, prefix_, message);
 }
 
 }  // namespace bhnsid::core

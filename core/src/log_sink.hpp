@@ -16,7 +16,10 @@ class LogSink {
   ~LogSink();
 
   void open_file(const std::filesystem::path& partial);
-  void write(bool warning, const std::string& prefix, const std::string& message);
+  enum class Level { info, warning, detail };
+  void write(Level level, const std::string& prefix, const std::string& message);
+  /// Detail lines reach the terminal too.
+  void set_verbose(bool verbose) { verbose_ = verbose; }
   /// Closes the file and renames it to `final_path`; InputError if any write to it failed.
   void finish(const std::filesystem::path& final_path);
   /// Closes and removes the partial log (the run never started).
@@ -27,6 +30,7 @@ class LogSink {
   std::FILE* file_ = nullptr;
   std::filesystem::path partial_;
   bool failed_ = false;
+  bool verbose_ = false;
 };
 
 }  // namespace bhnsid::core

@@ -59,9 +59,10 @@ class Executor {
   int signal() const { return signal_; }
 
   /// Returns false when a CHECK entry failed outright; `all_converged` and `detail` report the rest.
-  bool run_checks(bool& all_converged, std::string& detail) {
+  bool run_checks(bool& all_converged, std::string& detail, std::vector<std::string>& waiting) {
     all_converged = true;
     detail.clear();
+    waiting.clear();
     auto it = state_.config.schedule.find(Bin::check);
     if (it == state_.config.schedule.end()) return true;
     for (const auto* entry : it->second) {
@@ -69,6 +70,7 @@ class Executor {
       Convergence result;
       if (!call(*entry, [&](Context& ctx) { result = entry->check(ctx); })) return false;
       all_converged = all_converged && result.converged;
+      if (!result.converged) waiting.push_back(entry->full_name());
       detail += fmt::format("{}{}: {}{}", detail.empty() ? "" : "; ", entry->full_name(),
                             result.converged ? "converged" : "not converged",
                             result.detail.empty() ? "" : " (" + result.detail + ")");
@@ -136,7 +138,9 @@ std::string timers_tsv(const std::vector<Timer>& timers, double total) {
   return out + fmt::format("TOTAL\ttotal\t1\t{:.6f}\n", total);
 }
 
-std::string history_tsv(const RunState& state) {
+// One row per loop iteration: what each plugin set, and the iteration's wall time (the core's own
+// column, `seconds`).
+std::string scalars_tsv(const RunState& state) {
   std::string out = "iteration";
   for (const auto& c : state.history_columns) out += "\t" + c;
   out += "\n";
@@ -259,6 +263,7 @@ RunResult run(const Configuration& config, const RunOptions& options) {
     directory.record("log.txt.partial");
     directory.record("log.txt");
     state.sink.open_file(state.run_dir / "log.txt.partial");
+    state.sink.set_verbose(options.verbose);
     directory.record("params.yaml");
     write_file_atomic(state.run_dir / "params.yaml",
                       resolved_parfile_yaml(config, fmt::format("# Resolved parameters of the run started by:\n#   {}\n"
@@ -294,12 +299,29 @@ RunResult run(const Configuration& config, const RunOptions& options) {
     bool converged = false;
     std::string detail;
     state.in_loop = true;
+    directory.record("scalars.tsv");
     for (int it = 1; it <= max_iterations && ok && !converged; ++it) {
+      const auto iteration_start = std::chrono::steady_clock::now();
       state.iteration = it;
       state.history.emplace_back();
-      ok = exec.run_bin(Bin::solve) && exec.run_bin(Bin::update) && exec.run_checks(converged, detail);
+      state.progress.clear();
+      std::vector<std::string> waiting;
+      ok = exec.run_bin(Bin::solve) && exec.run_bin(Bin::update) && exec.run_checks(converged, detail, waiting);
       result.iterations = it;
-      if (ok) log.info("iteration {}/{}: {}", it, max_iterations, has_checks ? detail : "no CHECK entries, one pass");
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - iteration_start).count();
+      state.history.back()["seconds"] = seconds;
+      if (it == 1) state.history_columns.push_back("seconds");
+      if (ok) {
+        // The terminal gets one line per iteration, the log every check's detail as well.
+        std::string line = fmt::format("iteration {}/{}:", it, max_iterations);
+        for (const auto& [name, value] : state.progress) line += fmt::format(" {} {:.9g}", name, value);
+        line += fmt::format(", {:.2f} s", seconds);
+        if (has_checks) line += converged ? ", converged" : fmt::format(", waiting for {}", fmt::join(waiting, ", "));
+        log.info(line);
+        log.detail("iteration {} checks: {}", it, has_checks ? detail : "no CHECK entries, one pass");
+      }
+      // Rewritten every iteration, so that a long run's progress is on disk (and survives a kill).
+      write_file_atomic(state.run_dir / "scalars.tsv", scalars_tsv(state));
       if (!has_checks) break;
     }
     state.in_loop = false;
@@ -337,7 +359,7 @@ RunResult run(const Configuration& config, const RunOptions& options) {
     write_file_atomic(state.run_dir / name, text);
   };
   write("timers.tsv", timers_tsv(exec.timers(), total));
-  if (!state.history.empty()) write("history.tsv", history_tsv(state));
+  if (!state.history.empty()) write("scalars.tsv", scalars_tsv(state));
   write("summary.json", summary_json(state, result, message, prov));
   state.sink.finish(state.run_dir / "log.txt");
   return result;

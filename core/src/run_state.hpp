@@ -25,6 +25,7 @@ struct RunState {
   std::vector<std::pair<std::string, double>> scalars;  ///< summary.json order: first set, first listed
   std::vector<std::string> history_columns;
   std::vector<std::map<std::string, double>> history;  ///< one row per loop iteration
+  std::vector<std::pair<std::string, double>> progress;  ///< show_progress() of this iteration
 };
 
 }  // namespace bhnsid::core

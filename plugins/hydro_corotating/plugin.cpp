@@ -101,7 +101,12 @@ void declare(core::PluginBuilder& b) {
 
   b.schedule(Bin::update, "outer_step", [state](Context& ctx) {
      const StepReport r = state->star->step();
-     ctx.log().info("outer step {}: sigma = {:.12g}, Omegahat = {:.9g}, C_B = {:.12g}, xhat_C = {:.6g}, change {:.3e}{}",
+     ctx.show_progress("sigma", r.after.sigma);
+     if (r.after.omega_hat != 0) ctx.show_progress("omega_hat", r.after.omega_hat);
+     ctx.show_progress("bernoulli_constant", r.after.bernoulli);
+     ctx.show_progress("star_rest_mass", state->fluid->rest_mass());
+     ctx.show_progress("star_change", r.change);
+     ctx.log().detail("outer step {}: sigma = {:.12g}, Omegahat = {:.9g}, C_B = {:.12g}, xhat_C = {:.6g}, change {:.3e}{}",
                     r.iteration, r.after.sigma, r.after.omega_hat, r.after.bernoulli, r.after.x_c, r.change,
                     r.converged ? " (converged)" : "");
    }).doc("Newton solve for (sigma, C_B) with the TOV sigma-model, Bernoulli reset of rho0, flood fill");

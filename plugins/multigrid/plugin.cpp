@@ -139,7 +139,7 @@ void declare(core::PluginBuilder& b) {
      }
      state->report = state->solver->last_report();
      const SolveReport& r = state->report;
-     ctx.set_scalar("multigrid_cycles", r.cycles);
+     ctx.show_progress("multigrid_cycles", r.cycles);
      ctx.set_scalar("multigrid_factor", r.mean_factor);
      ctx.set_scalar("multigrid_seconds", r.seconds);
      ctx.set_scalar("multigrid_fine_sweep_seconds", r.fine_sweep_seconds);

@@ -134,7 +134,9 @@ void declare(core::PluginBuilder& b) {
      HoleValues h = scaled_hole(grid, *fluid, ctx.services().get<TovFamily>("tov_family"), mu, m0);
      h.momentum = {0.0, balancing_momentum(grid, *fluid), 0.0};
      if (!h.moved.empty()) ctx.log().info("puncture: {}", h.moved);
-     ctx.log().info("puncture: Mhat_BH = {:.12g}, xhat_BH = {:.12g}, Phat_y = {:.6e} (M0 = {:.12g})", h.mass, h.position[0],
+     ctx.show_progress("bh_position_x_hat", h.position[0]);
+     ctx.show_progress("bh_momentum_y_hat", h.momentum[1]);
+     ctx.log().detail("puncture: Mhat_BH = {:.12g}, xhat_BH = {:.12g}, Phat_y = {:.6e} (M0 = {:.12g})", h.mass, h.position[0],
                     h.momentum[1], m0);
      hole->mass = h.mass;
      hole->x = h.position;

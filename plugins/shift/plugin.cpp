@@ -24,12 +24,17 @@ struct State {
 void log_excision(const Context& ctx, const ExcisionReport& r) {
   std::string coarse;
   for (int l : r.nearest_levels) coarse += (coarse.empty() ? "" : ", ") + std::to_string(l);
-  ctx.log().info("shift: excision cube of side {:.6g} about ({:.6g}, {:.6g}, {:.6g}), held [{:.6g}, {:.6g}] x [{:.6g}, "
+  // Once per outer iteration inside the loop: the log's detail, not the terminal's.
+  const std::string line = fmt::format("shift: excision cube of side {:.6g} about ({:.6g}, {:.6g}, {:.6g}), held [{:.6g}, {:.6g}] x [{:.6g}, "
                  "{:.6g}] x [{:.6g}, {:.6g}], {} finest-level points{}; beta_0 = ({:.9g}, {:.9g}, {:.9g})",
                  r.cube.side, r.cube.centre[0], r.cube.centre[1], r.cube.centre[2], r.cube.lo[0], r.cube.hi[0],
                  r.cube.lo[1], r.cube.hi[1], r.cube.lo[2], r.cube.hi[2], r.finest_points,
                  coarse.empty() ? std::string{} : "; nearest point held on level(s) " + coarse, r.beta0[0], r.beta0[1],
                  r.beta0[2]);
+  if (ctx.iteration() > 0)
+    ctx.log().detail(line);
+  else
+    ctx.log().info(line);
 }
 
 void declare(core::PluginBuilder& b) {

@@ -14,7 +14,7 @@ json summary(const std::filesystem::path& run) { return json::parse(read_file(ru
 }  // namespace
 
 TEST_CASE("core.run.directory_contents", "[core][run]") {
-  // A converged run writes params.yaml, log.txt, timers.tsv, history.tsv and summary.json with the stable keys.
+  // A converged run writes params.yaml, log.txt, timers.tsv, scalars.tsv and summary.json with the stable keys.
   TempDir dir;
   const auto parfile = dir.write("case.yaml", counter_parfile("  count: 7\n  scale: 2.0\n"));
   const auto out = dir.path() / "out";
@@ -32,7 +32,9 @@ TEST_CASE("core.run.directory_contents", "[core][run]") {
   CHECK_THAT(read_file(out / "log.txt"), Contains("iteration 3/100") && Contains("status: converged"));
   CHECK_FALSE(std::filesystem::exists(out / "log.txt.partial"));
   CHECK_THAT(read_file(out / "timers.tsv"), Contains("SOLVE\ttp_counter.solve\t3\t") && Contains("TOTAL\ttotal"));
-  CHECK(read_file(out / "history.tsv") == "iteration\tcounter\n1\t1\n2\t2\n3\t3\n");
+  // The core's own column, the iteration's wall time, comes last.
+  CHECK_THAT(read_file(out / "scalars.tsv"),
+             Catch::Matches("iteration\tcounter\tseconds\n1\t1\t[0-9.e+-]+\n2\t2\t[0-9.e+-]+\n3\t3\t[0-9.e+-]+\n"));
   CHECK(read_file(out / "order.txt") ==
         "paramcheck\nstartup\nsetup\ninitial\nsolve\nupdate\ncheck\nsolve\nupdate\ncheck\nsolve\nupdate\ncheck\n"
         "analysis\noutput\n");

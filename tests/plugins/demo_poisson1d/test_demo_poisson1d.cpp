@@ -56,7 +56,7 @@ TEST_CASE("plugins.demo_poisson1d.second_order_convergence", "[plugins][demo_poi
 
 TEST_CASE("plugins.demo_poisson1d.example_parfile_runs", "[plugins][demo_poisson1d]") {
   // parfiles/demo_poisson1d.yaml runs unchanged to status "converged" with exit 0 and leaves the complete
-  // run directory: params.yaml, log.txt, timers.tsv, history.tsv, summary.json and solution.tsv.
+  // run directory: params.yaml, log.txt, timers.tsv, scalars.tsv, summary.json and solution.tsv.
   TempDir dir;
   const fs::path out = dir.path() / "demo_poisson1d";
   const ProcessResult r = run_bhnsid({"run", example().string(), "--output", out.string()});
@@ -67,7 +67,7 @@ TEST_CASE("plugins.demo_poisson1d.example_parfile_runs", "[plugins][demo_poisson
   CHECK(s["iterations"].get<int>() >= 1);
   CHECK(s["scalars"]["residual"].get<double>() < 1e-10);
   CHECK(s["scalars"]["error_max"].get<double>() < 1e-3);
-  for (const char* name : {"params.yaml", "log.txt", "timers.tsv", "history.tsv", "summary.json", "solution.tsv"})
+  for (const char* name : {"params.yaml", "log.txt", "timers.tsv", "scalars.tsv", "summary.json", "solution.tsv"})
     CHECK(fs::is_regular_file(out / name));
   CHECK_FALSE(fs::exists(out / "log.txt.partial"));
   const std::string solution = read_file(out / "solution.tsv");

@@ -36,6 +36,9 @@ class Context {
 
   /// A number for summary.json "scalars"; set during the loop it is also recorded per iteration.
   void set_scalar(const std::string& name, double value);
+  /// set_scalar(), and the value joins the core's one terminal line per loop iteration (the
+  /// quantities a user watches converge).
+  void show_progress(const std::string& name, double value);
   /// Current loop iteration (1-based), 0 before the loop.
   int iteration() const;
   /// The run directory; empty for `bhnsid check` and `schedule`.

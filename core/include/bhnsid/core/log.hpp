@@ -14,6 +14,9 @@ class Log {
 
   void info(const std::string& message) const;
   void warn(const std::string& message) const;
+  /// To log.txt always, to the terminal only with `bhnsid run --verbose`: the per-cycle and
+  /// per-step lines of a long run, where the terminal shows one line per iteration.
+  void detail(const std::string& message) const;
 
   template <class... Args>
   void info(fmt::format_string<Args...> format, Args&&... args) const {
@@ -22,6 +25,10 @@ class Log {
   template <class... Args>
   void warn(fmt::format_string<Args...> format, Args&&... args) const {
     warn(fmt::format(format, std::forward<Args>(args)...));
+  }
+  template <class... Args>
+  void detail(fmt::format_string<Args...> format, Args&&... args) const {
+    detail(fmt::format(format, std::forward<Args>(args)...));
   }
 
  private:

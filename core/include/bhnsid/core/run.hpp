@@ -1,6 +1,6 @@
 #pragma once
 // Executes a configuration: creates the run directory, runs the bins in order, keeps the last state
-// on failure and writes params.yaml, log.txt, timers.tsv, history.tsv and summary.json.
+// on failure and writes params.yaml, log.txt, timers.tsv, scalars.tsv and summary.json.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -14,6 +14,7 @@ struct RunOptions {
   std::filesystem::path run_directory;
   bool force = false;
   std::string command_line;
+  bool verbose = false;  ///< detail lines (per multigrid cycle, per plugin step) on the terminal too
   std::vector<std::filesystem::path> protect;  ///< --force never replaces a directory holding one (the parameter file)
 };
 
