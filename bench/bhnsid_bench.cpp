@@ -2,6 +2,7 @@
 //
 //   bhnsid-bench poisson --n N [--threads T] [--reps R]
 //   bhnsid-bench puncture --n N [--threads T] [--reps R]
+//   bhnsid-bench binary --n N [--threads T] [--reps R] [--parfile FILE]
 //   bhnsid-bench sweep [--n N] [--threads T] [--lower none|momentum|shift|shift-no-hole]
 //   bhnsid-bench robin [--n N] [--threads T]
 //   bhnsid-bench colour-split [--n N] [--threads T]
@@ -13,6 +14,7 @@
 // configuration, allocation, source terms, solve, analysis).
 #include <CLI/CLI.hpp>
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -127,6 +129,9 @@ Measured best_of(const std::string& parfile_text, const std::vector<std::string>
   return best;
 }
 
+// The Poisson benchmark's cycle, V(2,2) with omega = 1.2 (see main).
+const std::vector<std::string> poisson_cycle{"multigrid.pre_sweeps=2", "multigrid.post_sweeps=2", "multigrid.omega=1.2"};
+
 std::string poisson_parfile(int n, int threads, double tau_factor) {
   std::ostringstream par;
   par << "plugins: [grid, multigrid, mms]\n"
@@ -208,6 +213,87 @@ int puncture(int n, int threads, int reps, double tau_factor) {
   return 0;
 }
 
+// The seconds of one scheduled entry in a run directory's timers.tsv (bin, entry, calls, seconds).
+double entry_seconds(const fs::path& timers, const std::string& entry) {
+  std::ifstream in(timers);
+  std::string bin, name, calls, seconds;
+  double sum = 0;
+  while (in >> bin >> name >> calls >> seconds)
+    if (name == entry) sum += std::stod(seconds);
+  return sum;
+}
+
+// The paper example (parfiles/paper_example.yaml: mu_bn = 3, xhat_A = 0.4668, rho_max = 0.09265,
+// r_c = 1.92) at n intervals, dx = 3.84/n, the whole outer iteration to convergence, beside the
+// Poisson benchmark at the same n in the same process (alternating, after one warm-up each). Peak
+// RSS is the process's after the first binary run (before any Poisson run), set against the
+// grid's fields (grid_bytes). The IRE's ANALYSIS time is reported apart (ire_seconds).
+int binary(int n, int threads, int reps, const std::string& parfile) {
+  if (n < 16 || (n & (n - 1)) != 0) {
+    std::cerr << "bhnsid-bench binary: --n must be a power of 2 (intervals) >= 16, got " << n << "\n";
+    return 2;
+  }
+  std::ifstream file(parfile);
+  if (!file) {
+    std::cerr << "bhnsid-bench binary: cannot read " << parfile << "\n";
+    return 2;
+  }
+  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  char dx[64];
+  std::snprintf(dx, sizeof dx, "%.17g", 3.84 / n);
+  const std::vector<std::string> overrides{"grid.n=" + std::to_string(n), std::string("grid.dx=") + dx,
+                                           "run.threads=" + std::to_string(threads)};
+  const std::string poisson_par = poisson_parfile(n - 1, threads, 1.0);
+  const fs::path directory = fs::temp_directory_path() / ("bhnsid-bench-" + std::to_string(getpid()));
+  Measured best{1e300, {}}, poisson{1e300, {}};
+  double ire_seconds = 0, solve_seconds = 0, peak_rss = 0;
+  std::vector<double> pair_ratios;
+  for (int r = 0; r <= reps; ++r) {
+    const Measured a = run_once(text, overrides, directory);
+    if (r == 0) {
+      rusage usage{};
+      getrusage(RUSAGE_SELF, &usage);
+      peak_rss = static_cast<double>(usage.ru_maxrss) * 1024.0;
+    }
+    const double ire = entry_seconds(directory / "timers.tsv", "ire.residuals");
+    const double solve = entry_seconds(directory / "timers.tsv", "multigrid.solve");
+    const Measured b = run_once(poisson_par, poisson_cycle, directory);
+    if (r == 0) continue;
+    if (a.seconds < best.seconds) best = a, ire_seconds = ire, solve_seconds = solve;
+    if (b.seconds < poisson.seconds) poisson = b;
+    pair_ratios.push_back(a.seconds / b.seconds);
+  }
+  fs::remove_all(directory);
+  std::sort(pair_ratios.begin(), pair_ratios.end());
+  const std::size_t m = pair_ratios.size();
+  const double median = m % 2 ? pair_ratios[m / 2] : 0.5 * (pair_ratios[m / 2 - 1] + pair_ratios[m / 2]);
+  const json& s = best.summary["scalars"];
+  const double outer = best.summary.value("iterations", 0.0), cycles = s.value("multigrid_cycles_total", 0.0);
+  const double grid_bytes = s.value("grid_bytes", 0.0);
+  json out = {{"case", "binary"},
+              {"n", n},
+              {"threads", threads},
+              {"parfile", parfile},
+              {"seconds", best.seconds},
+              {"ire_seconds", ire_seconds},
+              {"outer_iterations", outer},
+              {"cycles", cycles},
+              {"cycles_per_outer_iteration", outer > 0 ? cycles / outer : 0.0},
+              {"solve_seconds", solve_seconds},
+              {"peak_rss_bytes", peak_rss},
+              {"grid_bytes", grid_bytes},
+              {"rss_over_grid", grid_bytes > 0 ? peak_rss / grid_bytes : 0.0},
+              {"poisson_seconds", poisson.seconds},
+              {"ratio", best.seconds / poisson.seconds},
+              {"pair_ratios", pair_ratios},
+              {"median_pair_ratio", median},
+              {"sigma", s.value("sigma", 0.0)},
+              {"omega_hat", s.value("omega_hat", 0.0)},
+              {"bernoulli_constant", s.value("bernoulli_constant", 0.0)}};
+  std::cout << out.dump() << std::endl;
+  return 0;
+}
+
 int poisson(int n, int threads, int reps, double tau_factor, const std::vector<std::string>& overrides) {
   if (n < 3 || ((n + 1) & n) != 0) {
     std::cerr << "bhnsid-bench poisson: --n must be 2^k - 1 (vertex-centred multigrid: n + 1 intervals), got " << n
@@ -276,6 +362,13 @@ int main(int argc, char** argv) {
   q->add_option("--tau-factor", puncture_tau,
                 "both solves stop when |r| <= this * |tau| for every equation (the solver's default 1e-3; "
                 "1 is the Poisson benchmark's criterion)");
+  int bn = 128;
+  std::string binary_parfile = std::string(BHNSID_SOURCE_DIR) + "/parfiles/paper_example.yaml";
+  auto* bin = app.add_subcommand("binary", "the paper example's BH/NS binary to convergence beside Poisson at the same n");
+  bin->add_option("--n", bn, "intervals per axis, a power of 2 (dx = 3.84/n: the file's r_c = 1.92)")->required();
+  bin->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  bin->add_option("--reps", reps, "timed runs after one warm-up; the best is reported")->check(CLI::PositiveNumber);
+  bin->add_option("--parfile", binary_parfile, "the binary's parameter file (grid.n, grid.dx, run.threads are set)");
   int sweep_n = 256;
   auto* w = app.add_subcommand("sweep", "one vector sweep of core with a lower-order term, ns per point at n = 32 .. N");
   w->add_option("--n", sweep_n, "largest n (intervals), a power of 2 >= 32");
@@ -304,8 +397,16 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
+  if (bin->parsed()) {
+    try {
+      return binary(bn, threads, reps, binary_parfile);
+    } catch (const std::exception& e) {
+      std::cerr << "bhnsid-bench: " << e.what() << "\n";
+      return 1;
+    }
+  }
   // The benchmark's cycle; a --set of the same key, applied later, wins.
-  std::vector<std::string> overrides{"multigrid.pre_sweeps=2", "multigrid.post_sweeps=2", "multigrid.omega=1.2"};
+  std::vector<std::string> overrides = poisson_cycle;
   overrides.insert(overrides.end(), user_overrides.begin(), user_overrides.end());
   try {
     return poisson(n, threads, reps, tau_factor, overrides);

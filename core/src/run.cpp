@@ -95,16 +95,19 @@ class Executor {
     Timer& timer = timer_for(entry);
     const auto start = std::chrono::steady_clock::now();
     bool ok = true;
+    // Inside the loop the failure names its iteration: a long outer iteration fails late.
+    const std::string where =
+        state_.in_loop ? fmt::format("{} (iteration {})", entry.full_name(), state_.iteration) : entry.full_name();
     try {
       body(contexts_.at(entry.plugin));
     } catch (const RunFailure& e) {
-      fail(fmt::format("{}: {}", entry.full_name(), e.what()), exit_run_failed);
+      fail(fmt::format("{}: {}", where, e.what()), exit_run_failed);
       ok = false;
     } catch (const InputError& e) {
-      fail(fmt::format("{}: {}", entry.full_name(), e.what()), exit_input);
+      fail(fmt::format("{}: {}", where, e.what()), exit_input);
       ok = false;
     } catch (const std::exception& e) {
-      fail(fmt::format("{}: internal error: {}", entry.full_name(), e.what()), exit_internal);
+      fail(fmt::format("{}: internal error: {}", where, e.what()), exit_internal);
       ok = false;
     }
     timer.calls += 1;

@@ -19,10 +19,22 @@ namespace {
 using core::Bin;
 using core::Context;
 
+/// The end-of-run summary on the terminal: each quantity with its name, symbol, value and a note.
+class Summary {
+ public:
+  void add(const std::string& name, const std::string& symbol, double value, const std::string& note = "") {
+    rows_ += fmt::format("\n  {:<30} {:<12} {:>15.9g}  {}", name, symbol, value, note);
+  }
+  std::string text() const { return rows_; }
+
+ private:
+  std::string rows_;
+};
+
 /// The binary's quantities (binary.hpp): M_NS and M0/(M0)_max from the TOV family when there is
 /// one, J, E_b, E_b', Omega M0, J/M0^2 (physical units); what a run cannot give is left out.
 void binary_scalars(Context& ctx, const Grid& grid, const Fluid& fluid, const Puncture* puncture, double adm_mass,
-                    double rest_mass) {
+                    double rest_mass, Summary& out) {
   const double sigma = fluid.sigma();
   double j = matter_angular_momentum(grid, sigma);
   double m_bh = 0, m_punc = 0;
@@ -32,13 +44,33 @@ void binary_scalars(Context& ctx, const Grid& grid, const Fluid& fluid, const Pu
     m_punc = m_bh * grid.interpolate(grid.data(grid.field_id(fields::chi), 0, 0), Parity{}, 0, puncture->position());
     ctx.set_scalar("bh_puncture_mass", m_punc);
   }
+  const double omega = fluid.omega_hat() / sigma;
+  const double x_c = sigma * fluid.centre()[0];
   ctx.set_scalar("angular_momentum", j);
-  ctx.set_scalar("omega_m0", fluid.omega_hat() / sigma * rest_mass);
+  ctx.set_scalar("omega", omega);
+  ctx.set_scalar("omega_m0", omega * rest_mass);
   ctx.set_scalar("j_over_m0sq", j / (rest_mass * rest_mass));
-  ctx.set_scalar("star_center_x", sigma * fluid.centre()[0]);
+  ctx.set_scalar("star_center_x", x_c);
+  if (puncture) {
+    ctx.set_scalar("separation", x_c - sigma * puncture->position()[0]);
+    out.add("black hole bare mass", "M_BH", m_bh, fmt::format("Mhat_BH = {:.9g}", puncture->bare_mass()));
+    out.add("black hole puncture mass", "M_BH chi", m_punc, "sigma Mhat_BH chi(puncture)");
+    out.add("black hole position", "x_BH", sigma * puncture->position()[0],
+            fmt::format("xhat_BH = {:.9g}", puncture->position()[0]));
+    out.add("black hole momentum", "P^y_BH", sigma * puncture->momentum()[1],
+            fmt::format("Phat^y = {:.9g}", puncture->momentum()[1]));
+    out.add("separation (coordinate)", "d", x_c - sigma * puncture->position()[0], "x_C - x_BH");
+  }
+  out.add("star centre (density max)", "x_C", x_c, fmt::format("xhat_C = {:.9g}", fluid.centre()[0]));
+  out.add("orbital angular velocity", "Omega", omega, fmt::format("Omegahat = {:.9g}", fluid.omega_hat()));
+  out.add("angular momentum (volume)", "J", j, "the matter's + x_BH P^y_BH");
+  out.add("", "Omega M0", omega * rest_mass);
+  out.add("", "J/M0^2", j / (rest_mass * rest_mass));
   const auto* family = ctx.services().find<TovFamily>("tov_family");
   if (!family) return;
-  ctx.set_scalar("rest_mass_fraction", rest_mass / family->maximum_rest_mass_star().rest_mass);
+  const double fraction = rest_mass / family->maximum_rest_mass_star().rest_mass;
+  ctx.set_scalar("rest_mass_fraction", fraction);
+  out.add("", "M0/(M0)_max", fraction, fmt::format("(M0)_max = {:.9g} of the EOS", family->maximum_rest_mass_star().rest_mass));
   double m_ns = 0;
   try {
     m_ns = family->adm_mass_from_rest_mass(rest_mass);
@@ -48,11 +80,13 @@ void binary_scalars(Context& ctx, const Grid& grid, const Fluid& fluid, const Pu
   }
   ctx.set_scalar("ns_adm_mass", m_ns);
   ctx.set_scalar("binding_energy", (adm_mass - m_bh - m_ns) / rest_mass);
-  if (puncture) ctx.set_scalar("binding_energy_puncture", (adm_mass - m_punc - m_ns) / rest_mass);
-  ctx.log().info("J = {:.9g}, Omega M0 = {:.6g}, J/M0^2 = {:.6g}, M_NS = {:.9g}, E_b = {:.6g}{}", j,
-                 fluid.omega_hat() / sigma * rest_mass, j / (rest_mass * rest_mass), m_ns,
-                 (adm_mass - m_bh - m_ns) / rest_mass,
-                 puncture ? fmt::format(", E_b' = {:.6g}", (adm_mass - m_punc - m_ns) / rest_mass) : std::string());
+  out.add("star's isolated ADM mass", "M_NS", m_ns, "the TOV star of the same M0");
+  out.add("binding energy", "E_b", (adm_mass - m_bh - m_ns) / rest_mass, "(M_ADM - M_BH - M_NS)/M0, the paper's");
+  if (puncture) {
+    ctx.set_scalar("binding_energy_puncture", (adm_mass - m_punc - m_ns) / rest_mass);
+    out.add("binding energy (puncture mass)", "E_b'", (adm_mass - m_punc - m_ns) / rest_mass,
+            "with M_BH chi(puncture)");
+  }
 }
 
 void declare(core::PluginBuilder& b) {
@@ -96,7 +130,7 @@ void declare(core::PluginBuilder& b) {
      ctx.set_scalar("adm_mass_outside_net_momentum", outside_parts.net_momentum);
      ctx.set_scalar("adm_mass_outside_remainder", outside_parts.remainder);
      ctx.set_scalar("adm_mass_falloff", m.adm_mass_falloff);
-     ctx.log().info("M0 = {:.9g}, M_ADM = {:.9g} (volume {:.9g} + outside the cube {:.3g}), {:.9g} (1/r falloff at "
+     ctx.log().detail("M0 = {:.9g}, M_ADM = {:.9g} (volume {:.9g} + outside the cube {:.3g}), {:.9g} (1/r falloff at "
                     "the faces)", rest_mass, m.adm_mass_volume + outside, m.adm_mass_volume, outside, m.adm_mass_falloff);
      if (puncture) {
        const double chi = grid.interpolate(grid.data(grid.field_id(fields::chi), 0, 0), Parity{}, 0, puncture->position());
@@ -104,14 +138,25 @@ void declare(core::PluginBuilder& b) {
        ctx.set_scalar("puncture_mass", in.sigma * puncture->bare_mass() * chi);
      }
      for (const auto& [key, value] : deviations(grid)) ctx.set_scalar(key, value);
-     if (fluid) binary_scalars(ctx, grid, *fluid, puncture, m.adm_mass_volume + outside, rest_mass);
+     const double surface = surface_flux_mass(grid, in.sigma, in.bh_bare_mass);
+     ctx.set_scalar("adm_mass_surface", surface);
+     Summary summary;
+     summary.add("ADM mass", "M_ADM", m.adm_mass_volume + outside,
+                 fmt::format("volume; Robin falloff {:.9g}, surface flux {:.9g}", m.adm_mass_falloff, surface));
+     if (fluid) {
+       summary.add("rest mass", "M0", rest_mass);
+       binary_scalars(ctx, grid, *fluid, puncture, m.adm_mass_volume + outside, rest_mass, summary);
+     }
      if (grid.has_field(fields::ahat)) {
        const SurfaceMomenta& s = faces;
        ctx.set_scalar("momentum_surface_x", s.momentum_x);
        ctx.set_scalar("momentum_surface_y", s.momentum_y);
        ctx.set_scalar("angular_momentum_z", s.angular_momentum_z);
-       ctx.log().info("at the faces: P = ({:.9g}, {:.9g}), J_z = {:.9g}", s.momentum_x, s.momentum_y, s.angular_momentum_z);
+       summary.add("angular momentum (faces)", "J_z", s.angular_momentum_z, "surface integral of Ahat");
+       summary.add("total linear momentum (faces)", "P^y", s.momentum_y,
+                   fmt::format("P^x = {:.3g}; ~0 for a binary", s.momentum_x));
      }
+     ctx.log().info("physical quantities (G = c = 1, the EOS's units; hatted = coordinate / sigma):{}", summary.text());
    }).doc("max deviations from flat space; rest_mass, adm_mass (volume inside the cube + the Bowen-York AA outside it, also given apart as adm_mass_inside, adm_mass_outside = adm_mass_outside_net_momentum (r^-4) + adm_mass_outside_remainder (r^-6)), adm_mass_falloff (Robin coefficient of chi); with a puncture chi_puncture "
           "and puncture_mass = sigma Mhat chi(puncture); with Ahat the surface integrals momentum_surface_x/y and "
           "angular_momentum_z; physical units");

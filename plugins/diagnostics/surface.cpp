@@ -26,6 +26,21 @@ SurfaceMomenta surface_momenta(const Grid& grid, double sigma) {
   return {sigma * c * px, sigma * c * py, sigma * sigma * c * jz};
 }
 
+double surface_flux_mass(const Grid& grid, double sigma, double bare_mass_hat) {
+  const Level& lv = grid.finest();
+  const double* chi = grid.data(grid.field_id(fields::chi), 0, 0);
+  const std::ptrdiff_t stride[3] = {lv.at(1, 0, 0) - lv.at(0, 0, 0), lv.at(0, 1, 0) - lv.at(0, 0, 0),
+                                    lv.at(0, 0, 1) - lv.at(0, 0, 0)};
+  double flux = 0;
+  for_each_face_point(lv, [&](int axis, double sign, int i, int j, int k, double area) {
+    const std::ptrdiff_t p = lv.at(i, j, k), in = -static_cast<std::ptrdiff_t>(sign) * stride[axis];
+    // Outward derivative, one-sided: (3 f_0 - 4 f_1 + f_2) / (2 dx) with f_m m points inwards.
+    const double dn = (3.0 * chi[p] - 4.0 * chi[p + in] + chi[p + 2 * in]) / (2.0 * lv.dx);
+    flux += dn * area;
+  });
+  return sigma * (bare_mass_hat - flux / (2.0 * std::numbers::pi));
+}
+
 OutsideMass outside_aa_mass(const Grid& grid, double sigma, const std::array<double, 3>& centre,
                             const std::array<double, 2>& net_momentum_hat) {
   const Level& lv = grid.finest();

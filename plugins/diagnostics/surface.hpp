@@ -29,6 +29,11 @@ struct OutsideMass {
   double remainder = 0;     ///< the r^-6 part
   double total() const { return net_momentum + remainder; }
 };
+/// M_ADM from the flux of the conformal factor through the faces (the paper's surface estimate,
+/// §6.1): M = -(1/2pi) oint d_i psi dS^i with psi = chi + Mhat_BH/(2 r_BH), whose puncture part
+/// contributes Mhat_BH exactly; d_n chi one-sided at second order. Physical units with sigma.
+double surface_flux_mass(const Grid& grid, double sigma, double bare_mass_hat);
+
 OutsideMass outside_aa_mass(const Grid& grid, double sigma, const std::array<double, 3>& centre,
                             const std::array<double, 2>& net_momentum_hat);
 

@@ -96,7 +96,9 @@ void declare(core::PluginBuilder& b) {
    }).doc("build the level hierarchy and publish the grid service");
 
   b.schedule(Bin::terminate, "report_memory", [state](Context& ctx) {
-     if (state->grid) ctx.log().info("{:.1f} MiB in grid fields and masks", state->grid->bytes_allocated() / 1048576.0);
+     if (!state->grid) return;
+     ctx.log().info("{:.1f} MiB in grid fields and masks", state->grid->bytes_allocated() / 1048576.0);
+     ctx.set_scalar("grid_bytes", static_cast<double>(state->grid->bytes_allocated()));
    }).doc("memory held by fields");
 }
 

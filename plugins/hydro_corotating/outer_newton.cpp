@@ -10,6 +10,13 @@ namespace bhnsid::hydro_corotating {
 
 namespace {
 
+// Newton stops when a full step moves every unknown by less than this, relative. The sigma-model's
+// values carry round-off (its TOV profile solve, ~1e-11), which the finite-difference dF/dsigma
+// divides: for a weak-field star (rho_max = 0.01, the Kepler limit) dalpha/dsigma is small and
+// 1e-12 was below that floor (measured: 50 steps without reaching it). 1e-10 is four orders below
+// the outer tolerance.
+constexpr double newton_step_tolerance = 1e-10;
+
 struct Residual {
   double f[2];
   double dfds[2];
@@ -66,7 +73,8 @@ NewtonResult solve_sigma_bernoulli(const std::vector<AxisPoint>& points, const A
     if (!(c > 0))
       throw core::RunFailure(fmt::format("hydro_corotating: the Newton solve gave C_B = {} <= 0 at sigma = {}", c, s));
     // Converged on a full step only: a step shrunk by the fold guard is small away from the root too.
-    if (lambda == 1 && std::fabs(ds) <= 1e-12 * std::fabs(s) && std::fabs(dc) <= 1e-12 * c) return {s, c, it};
+    if (lambda == 1 && std::fabs(ds) <= newton_step_tolerance * std::fabs(s) && std::fabs(dc) <= newton_step_tolerance * c)
+      return {s, c, it};
   }
   throw core::RunFailure(fmt::format("hydro_corotating: the (sigma, C_B) Newton solve did not converge in 50 iterations "
                                      "(last sigma = {}, C_B = {}, residuals {:.3e}, {:.3e})",
@@ -157,8 +165,8 @@ OrbitResult solve_sigma_omega_bernoulli(const std::vector<OrbitPoint>& points, c
     if (!(c > 0))
       throw core::RunFailure(fmt::format("hydro_corotating: the Newton solve gave C_B = {} <= 0 at sigma = {}", c, s));
     // Converged on a full step only: a step shrunk by a guard is small away from the root too.
-    if (lambda == 1 && std::fabs(dq[0]) <= 1e-12 * std::fabs(s) && std::fabs(dq[1]) <= 1e-12 * std::fabs(w) &&
-        std::fabs(dq[2]) <= 1e-12 * c)
+    if (lambda == 1 && std::fabs(dq[0]) <= newton_step_tolerance * std::fabs(s) &&
+        std::fabs(dq[1]) <= newton_step_tolerance * std::fabs(w) && std::fabs(dq[2]) <= newton_step_tolerance * c)
       return {s, w, c, it};
   }
   throw core::RunFailure(fmt::format("hydro_corotating: the (sigma, Omegahat, C_B) Newton solve did not converge in 50 "

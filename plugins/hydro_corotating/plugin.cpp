@@ -127,7 +127,12 @@ void declare(core::PluginBuilder& b) {
      ctx.set_scalar("rho_max", ctx.params().real("rho_max"));
      ctx.set_scalar("x_a", ctx.params().real("x_a"));
      ctx.set_scalar("outer_iterations", static_cast<double>(state->star->history().size()));
-   }).doc("sigma, bernoulli_constant, x_c, outer_iterations");
+     const auto& h = state->star->history();
+     ctx.log().info("star: sigma = {:.9g}, Omegahat = {:.9g}, C_B = {:.9g}, xhat_C = {:.6g} (rho_max = {}, xhat_A = {}); "
+                    "{} outer steps, the last changing sigma, Omegahat, C_B and M0 by {:.2e} (tolerance {:.1e})",
+                    c.sigma, c.omega_hat, c.bernoulli, c.x_c, ctx.params().real("rho_max"), ctx.params().real("x_a"),
+                    h.size(), h.empty() ? 0.0 : h.back().change, ctx.params().real("tolerance"));
+   }).doc("sigma, bernoulli_constant, omega_hat, x_c (star_center_x_hat), rho_max, x_a, outer_iterations; one log line");
 
   b.schedule(Bin::output, "write", [state](Context& ctx) {
      if (!state->star) return;

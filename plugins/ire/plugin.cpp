@@ -101,10 +101,15 @@ void declare(core::PluginBuilder& b) {
        if (in.fluid) {
          ctx.set_scalar(key(e, "surface_l2"), r.surface.at(e).l2);
          ctx.set_scalar(key(e, "surface_max"), r.surface.at(e).max);
+         ctx.set_scalar(key(e, "star_l2"), r.star.at(e).l2);
+         ctx.set_scalar(key(e, "star_max"), r.star.at(e).max);
+         ctx.set_scalar(key(e, "star_points"), static_cast<double>(r.star.at(e).points));
        }
        if (in.puncture) ctx.set_scalar(key(e, "puncture_max"), r.puncture.at(e).max);
        ctx.log().info("IRE {:<11s} away: L2 {:.3e}, max {:.3e} ({} points){}{}", e, away.l2, away.max, away.points,
-                      in.fluid ? fmt::format("; surface band: L2 {:.3e}, max {:.3e}", r.surface.at(e).l2, r.surface.at(e).max) : "",
+                      in.fluid ? fmt::format("; surface band: L2 {:.3e}, max {:.3e}; inside the star: L2 {:.3e} ({} points)",
+                                             r.surface.at(e).l2, r.surface.at(e).max, r.star.at(e).l2, r.star.at(e).points)
+                               : "",
                       in.puncture ? fmt::format("; near the puncture: max {:.3e}", r.puncture.at(e).max) : "");
      }
    }).doc("the residuals of the Hamiltonian and momentum constraints, maximal slicing (d_t K), minimal distortion "

@@ -21,6 +21,7 @@ using core::Context;
 struct State {
   std::unique_ptr<FasSolver> solver;
   SolveReport report;
+  int total_cycles = 0;  ///< finest-level cycles over every solve of the run
 };
 
 Settings settings_from(const core::ParamSection& p) {
@@ -107,6 +108,12 @@ void declare(core::PluginBuilder& b) {
       .doc("after a converged solve, the next one (an outer iteration's) cycles from its solution instead of "
            "an FMG start")
       .default_value(true);
+  b.integer("loop_cycles")
+      .doc("inside the outer loop, at most this many cycles per solve while the sources still move: the solve "
+           "stops unconverged (its CHECK says so, the loop goes on) and the next continues from its fields; "
+           "0: every solve to the tolerance; ignored without warm_start")
+      .default_value(std::int64_t{0})
+      .at_least(0);
   b.integer("fmg_cycles").doc("cycles on each level during the FMG start").default_value(std::int64_t{1}).at_least(1);
   b.real("tau_factor")
       .doc("converged when, for every equation, rms residual <= tau_factor * rms truncation-error estimate "
@@ -132,7 +139,7 @@ void declare(core::PluginBuilder& b) {
      }
      // last_report() also holds the history of a failed solve, for OUTPUT.
      try {
-       state->solver->solve();
+       state->solver->solve(ctx.iteration() > 0 ? static_cast<int>(ctx.params().integer("loop_cycles")) : 0);
      } catch (const core::RunFailure&) {
        state->report = state->solver->last_report();
        throw;
@@ -140,6 +147,8 @@ void declare(core::PluginBuilder& b) {
      state->report = state->solver->last_report();
      const SolveReport& r = state->report;
      ctx.show_progress("multigrid_cycles", r.cycles);
+     state->total_cycles += r.cycles;
+     ctx.set_scalar("multigrid_cycles_total", state->total_cycles);
      ctx.set_scalar("multigrid_factor", r.mean_factor);
      ctx.set_scalar("multigrid_seconds", r.seconds);
      ctx.set_scalar("multigrid_fine_sweep_seconds", r.fine_sweep_seconds);

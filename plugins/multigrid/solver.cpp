@@ -432,9 +432,9 @@ void FasSolver::fail_nonfinite(int cycle_number) {
       where_slot ? where_slot->name : "?", where_comp, wi, wj, wk, lv.x(wi), lv.y(wj), lv.z(wk)));
 }
 
-SolveReport FasSolver::solve() {
+SolveReport FasSolver::solve(int cycle_cap) {
   try {
-    return solve_cycles();
+    return solve_cycles(cycle_cap);
   } catch (const RunFailure& failure) {
     // Equations know what a failure of theirs usually means (e.g. the Hamiltonian constraint's
     // fold); the solver only knows that it failed.
@@ -446,7 +446,7 @@ SolveReport FasSolver::solve() {
   }
 }
 
-SolveReport FasSolver::solve_cycles() {
+SolveReport FasSolver::solve_cycles(int cycle_cap) {
   using clock = std::chrono::steady_clock;
   report_ = SolveReport{};
   SolveReport& report = report_;
@@ -562,6 +562,14 @@ SolveReport FasSolver::solve_cycles() {
       report.converged = true;
       warm_ = true;
       report.message = fmt::format("converged in {} cycles, mean factor {:.3f}", number, report.mean_factor);
+      return report;
+    }
+    // Without a warm start the next solve would begin afresh: the cap would only lose the work.
+    if (cycle_cap > 0 && settings_.warm_start && number >= cycle_cap) {
+      warm_ = true;  // an approximate solution the next solve continues from
+      double worst = 0;
+      for (std::size_t s = 0; s < slots_.size(); ++s) worst = std::max(worst, rec.residual[s] / std::max(rec.tau[s], 1e-300));
+      report.message = fmt::format("stopped after {} cycles (multigrid.loop_cycles), largest r/tau {:.2e}", number, worst);
       return report;
     }
     // Only equations still above their tolerance can stall: one that has reached round-off (the

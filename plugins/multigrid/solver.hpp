@@ -83,7 +83,9 @@ class FasSolver {
   /// Solves to the stopping criterion; throws core::RunFailure on NaN, divergence, stagnation or
   /// max_cycles, naming the equation and, for NaN, the point, followed by every equation's
   /// failure_hint().
-  SolveReport solve();
+  /// cycle_cap > 0: stop unconverged (not failed) after that many cycles, keeping the fields for
+  /// the next solve to continue (an outer iteration whose sources still move).
+  SolveReport solve(int cycle_cap = 0);
   const std::vector<Slot>& slots() const { return slots_; }
   /// The levels the cycle uses: the grid's, cut above the first level too coarse for a Robin centre.
   int levels() const { return levels_; }
@@ -91,7 +93,7 @@ class FasSolver {
   const SolveReport& last_report() const { return report_; }
 
  private:
-  SolveReport solve_cycles();
+  SolveReport solve_cycles(int cycle_cap);
   friend class CoarseSolver;
   void prepare();
   void cycle(int l, CycleType type);
