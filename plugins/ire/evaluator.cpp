@@ -495,8 +495,8 @@ Result evaluate(const Grid& grid, const Inputs& in) {
   out.equations = {"hamiltonian", "momentum", "lapse", "shift"};
   if (bernoulli) out.equations.push_back("bernoulli");
   const std::size_t ne = out.equations.size();
-  // Per equation and region (0 away, 1 surface, 2 puncture; 3 the part of 0 inside the star),
-  // accumulated per thread, then summed.
+  // Per equation and region (0 away: vacuum; 1 surface; 2 puncture; 3 inside the star away from its
+  // surface), accumulated per thread, then summed. Bernoulli lives in the star: its "away" is 3.
   std::vector<std::array<Accumulator, 4>> total(ne);
   const int jaxis = static_cast<int>(std::lround(-b.y0 / b.dx));
   const int kaxis = static_cast<int>(std::lround(-b.z0 / b.dx));
@@ -522,24 +522,18 @@ Result evaluate(const Grid& grid, const Inputs& in) {
           const PointResiduals r = residuals_at(b, need, g, sigma2, i, j, k);
           const bool matter = g.rho0.v[pi] > 0;
           const double bern = bernoulli && matter ? g.enthalpy.v[pi] * g.alpha.v[po] / g.lorentz.v[pi] - in.bernoulli : nan;
-          const int region = near.contains(i, j, k) ? 2 : band[p] ? 1 : 0;
+          const int region = near.contains(i, j, k) ? 2 : band[p] ? 1 : matter ? 3 : 0;
           local[0][static_cast<std::size_t>(region)].add(&r.hamiltonian, 1);
           local[1][static_cast<std::size_t>(region)].add(r.momentum, 3);
           local[2][static_cast<std::size_t>(region)].add(&r.lapse, 1);
           local[3][static_cast<std::size_t>(region)].add(r.shift, 3);
-          if (bernoulli && matter) local[4][static_cast<std::size_t>(region)].add(&bern, 1);
-          if (region == 0 && matter) {
-            local[0][3].add(&r.hamiltonian, 1);
-            local[1][3].add(r.momentum, 3);
-            local[2][3].add(&r.lapse, 1);
-            local[3][3].add(r.shift, 3);
-          }
+          if (bernoulli && matter) local[4][static_cast<std::size_t>(region == 3 ? 0 : region)].add(&bern, 1);
           if (on_axis)
             axis_rows[static_cast<std::size_t>(i)] =
                 fmt::format("{:.10g}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\n", b.x0 + b.dx * i, number(r.hamiltonian),
                             number(r.momentum[0]), number(r.momentum[1]), number(r.momentum[2]), number(r.lapse),
                             number(r.shift[0]), number(r.shift[1]), number(r.shift[2]), number(bern),
-                            region == 2 ? "puncture" : region == 1 ? "surface" : "away");
+                            region == 2 ? "puncture" : region == 1 ? "surface" : region == 3 ? "star" : "away");
         }
 #pragma omp critical
     for (std::size_t e = 0; e < ne; ++e)

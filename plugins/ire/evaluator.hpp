@@ -34,10 +34,9 @@ struct Norms {
 /// Residual norms per equation and region, and the x-axis table.
 struct Result {
   std::vector<std::string> equations;           ///< hamiltonian, momentum, lapse, shift, bernoulli
-  std::map<std::string, Norms> away, surface, puncture;
-  /// The part of `away` inside the star: at the paper example's resolutions a handful of points
-  /// whose residuals, 100 times the vacuum's, decide the L2 norm.
-  std::map<std::string, Norms> star;
+  /// away: in vacuum, away from the puncture and the star's surface band; star: inside the star away
+  /// from its band (for Bernoulli, away is the star's interior and star is empty).
+  std::map<std::string, Norms> away, surface, puncture, star;
   std::string axis_table;                       ///< ire_axis.tsv
 };
 

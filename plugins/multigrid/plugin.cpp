@@ -34,6 +34,7 @@ Settings settings_from(const core::ParamSection& p) {
   s.fmg = p.boolean("fmg");
   s.fmg_cycles = static_cast<int>(p.integer("fmg_cycles"));
   s.warm_start = p.boolean("warm_start");
+  s.fmg_restart = p.real("fmg_restart");
   s.tau_factor = p.real("tau_factor");
   s.abs_tolerance = p.real("abs_tolerance");
   s.max_cycles = static_cast<int>(p.integer("max_cycles"));
@@ -108,6 +109,11 @@ void declare(core::PluginBuilder& b) {
       .doc("after a converged solve, the next one (an outer iteration's) cycles from its solution instead of "
            "an FMG start")
       .default_value(true);
+  b.real("fmg_restart")
+      .doc("> 0: a warm start whose residual exceeds this multiple of tau for some equation restarts with FMG "
+           "instead; 0: a warm start always continues (measured faster for the binary: docs/performance.md)")
+      .default_value(0.0)
+      .at_least(0);
   b.integer("loop_cycles")
       .doc("inside the outer loop, at most this many cycles per solve while the sources still move: the solve "
            "stops unconverged (its CHECK says so, the loop goes on) and the next continues from its fields; "

@@ -26,6 +26,7 @@ struct Settings {
   bool fmg = true;
   int fmg_cycles = 1;
   bool warm_start = true;        ///< after a converged solve, the next starts from its fields (no FMG)
+  double fmg_restart = 0;        ///< > 0: ... unless its residual exceeds this times tau: then FMG
   double tau_factor = 1e-3;      ///< converged when |r| <= tau_factor |tau| for every equation
   double abs_tolerance = 0;      ///< ... or |r| <= abs_tolerance (0: off)
   int max_cycles = 30;
