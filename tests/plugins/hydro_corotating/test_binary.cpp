@@ -153,3 +153,34 @@ TEST_CASE("plugins.hydro_corotating.piecewise_polytrope_binary_converges", "[plu
   CHECK(std::fabs(s["momentum_surface_y"].get<double>()) < 0.1 * std::fabs(s["bh_momentum_y"].get<double>()));
   CHECK(s["rest_mass_fraction"].get<double>() == Approx(0.6).margin(0.05));
 }
+
+TEST_CASE("plugins.hydro_corotating.paper_starts_stay_below_the_fold", "[plugins][hydro_corotating][binary]") {
+  // The starts of the paper's ISCO rows (Tables I-II: mu_bn = 1 and 3 at M0 = 0.75 (M0)_max, 10 at
+  // 0.60; physics-notes table_checks.py) on coarse grids with the r_c of Table III (1.92; 1.28 for
+  // mu = 10): sigma_0 = R_iso/(Rhat phi_ext^2) lies below the fold, so the first field solve and
+  // the first outer step succeed, and the run stops only at its iteration limit. Without the
+  // phi_ext^2 (sigma_0 = R_iso/Rhat: 3.41 and 7.17 against 3.06 and 6.20 here) the mu = 3 start
+  // fails at its first step (measured at n = 32: the star's M0 = 0.281 exceeds (M0)_max = 0.180).
+  struct Start {
+    const char* mu;
+    const char* x_a;
+    const char* rho_max;
+    const char* n;
+    const char* dx;
+  };
+  TempDir dir;
+  for (const Start& s : {Start{"1", "0.164", "0.09589", "32", "0.12"}, Start{"3", "0.484", "0.09691", "32", "0.12"},
+                         Start{"10", "0.73", "0.0657", "64", "0.04"}}) {
+    const auto out = dir.path() / (std::string("mu") + s.mu);
+    const ProcessResult r = run_bhnsid({"run", quickstart(), "--output", out.string(), "--set",
+                                        std::string("puncture.mass_ratio=") + s.mu, "--set",
+                                        std::string("hydro_corotating.x_a=") + s.x_a, "--set",
+                                        std::string("hydro_corotating.rho_max=") + s.rho_max, "--set",
+                                        std::string("grid.n=") + s.n, "--set", std::string("grid.dx=") + s.dx, "--set",
+                                        "run.max_iterations=1"});
+    INFO("mu = " << s.mu << ": " << r.err);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("run.max_iterations = 1") != std::string::npos);
+    CHECK(r.err.find("fold") == std::string::npos);
+  }
+}
