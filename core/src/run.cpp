@@ -303,6 +303,7 @@ RunResult run(const Configuration& config, const RunOptions& options) {
     std::string detail;
     state.in_loop = true;
     directory.record("scalars.tsv");
+    bool scalars_write_failed = false;
     for (int it = 1; it <= max_iterations && ok && !converged; ++it) {
       const auto iteration_start = std::chrono::steady_clock::now();
       state.iteration = it;
@@ -313,7 +314,8 @@ RunResult run(const Configuration& config, const RunOptions& options) {
       result.iterations = it;
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - iteration_start).count();
       state.history.back()["seconds"] = seconds;
-      if (it == 1) state.history_columns.push_back("seconds");
+      if (std::find(state.history_columns.begin(), state.history_columns.end(), "seconds") == state.history_columns.end())
+        state.history_columns.push_back("seconds");
       if (ok) {
         // The terminal gets one line per iteration, the log every check's detail as well.
         std::string line = fmt::format("iteration {}/{}:", it, max_iterations);
@@ -323,8 +325,14 @@ RunResult run(const Configuration& config, const RunOptions& options) {
         log.info(line);
         log.detail("iteration {} checks: {}", it, has_checks ? detail : "no CHECK entries, one pass");
       }
-      // Rewritten every iteration, so that a long run's progress is on disk (and survives a kill).
-      write_file_atomic(state.run_dir / "scalars.tsv", scalars_tsv(state));
+      // Rewritten every iteration, so that a long run's progress is on disk (and survives a kill); a
+      // failed write (a full disk) is said once and retried at the end, where it is an error.
+      try {
+        write_file_atomic(state.run_dir / "scalars.tsv", scalars_tsv(state));
+      } catch (const InputError& e) {
+        if (!scalars_write_failed) log.warn("scalars.tsv not updated during the loop: {}", e.what());
+        scalars_write_failed = true;
+      }
       if (!has_checks) break;
     }
     state.in_loop = false;

@@ -566,7 +566,9 @@ SolveReport FasSolver::solve_cycles(int cycle_cap) {
       return report;
     }
     // Without a warm start the next solve would begin afresh: the cap would only lose the work.
-    if (cycle_cap > 0 && settings_.warm_start && number >= cycle_cap) {
+    // A capped solve stops only on a cycle that reduced the residual, and not before min_cycles: a
+    // stalling or growing solve goes on to the stall, divergence and max_cycles tests below.
+    if (cycle_cap > 0 && settings_.warm_start && number >= std::max(cycle_cap, settings_.min_cycles) && rec.factor < 1) {
       warm_ = true;  // an approximate solution the next solve continues from
       double worst = 0;
       for (std::size_t s = 0; s < slots_.size(); ++s) worst = std::max(worst, rec.residual[s] / std::max(rec.tau[s], 1e-300));
