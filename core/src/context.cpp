@@ -29,13 +29,19 @@ void Context::publish_raw(const std::string& capability, std::shared_ptr<Service
   state_->services.publish_raw(decl_->name, capability, std::move(service));
 }
 
-void Context::set_scalar(const std::string& name, double value) {
-  auto& scalars = state_->scalars;
-  auto it = std::find_if(scalars.begin(), scalars.end(), [&](const auto& s) { return s.first == name; });
-  if (it == scalars.end())
-    scalars.emplace_back(name, value);
+namespace {
+// Sets `name` in an ordered list of (name, value): first set, first listed.
+void set_in(std::vector<std::pair<std::string, double>>& list, const std::string& name, double value) {
+  auto it = std::find_if(list.begin(), list.end(), [&](const auto& s) { return s.first == name; });
+  if (it == list.end())
+    list.emplace_back(name, value);
   else
     it->second = value;
+}
+}  // namespace
+
+void Context::set_scalar(const std::string& name, double value) {
+  set_in(state_->scalars, name, value);
   if (state_->in_loop && !state_->history.empty()) {
     auto& columns = state_->history_columns;
     if (std::find(columns.begin(), columns.end(), name) == columns.end()) columns.push_back(name);
@@ -45,12 +51,7 @@ void Context::set_scalar(const std::string& name, double value) {
 
 void Context::show_progress(const std::string& name, double value) {
   set_scalar(name, value);
-  auto& shown = state_->progress;
-  auto it = std::find_if(shown.begin(), shown.end(), [&](const auto& s) { return s.first == name; });
-  if (it == shown.end())
-    shown.emplace_back(name, value);
-  else
-    it->second = value;
+  set_in(state_->progress, name, value);
 }
 
 int Context::iteration() const { return state_->iteration; }
