@@ -55,6 +55,11 @@ void Context::show_progress(const std::string& name, double value) {
 }
 
 int Context::iteration() const { return state_->iteration; }
+double Context::step_fraction() const { return state_->step_fraction; }
+int Context::max_retreats() const {
+  const auto it = state_->config.params.find("run");
+  return it == state_->config.params.end() ? 0 : static_cast<int>(it->second.integer("max_retreats"));
+}
 const std::filesystem::path& Context::run_directory() const { return state_->run_dir; }
 
 void Context::write_output(const std::string& relative_name, const std::string& contents) const {

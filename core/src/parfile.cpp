@@ -90,12 +90,18 @@ const PluginDecl& core_declaration() {
     PluginDecl d;
     d.name = "run";
     d.version = "core";
-    d.description = "the core: outer-loop limit and threads";
+    d.description = "the core: outer-loop limits and threads";
     PluginBuilder b(d);
     b.integer("max_iterations")
         .doc("most iterations of the SOLVE/UPDATE/CHECK loop before the run is declared failed")
         .default_value(std::int64_t{100})
         .at_least(1);
+    b.integer("max_retreats")
+        .doc("times one loop iteration may undo the last UPDATE and redo it with half the step after a SOLVE entry "
+             "fails with a step failure (a diverging solve), before the run is declared failed; 0: never")
+        .default_value(std::int64_t{4})
+        .at_least(0)
+        .at_most(30);
     b.integer("threads")
         .doc("OpenMP threads for every kernel; 0 keeps OMP_NUM_THREADS or the machine's default")
         .default_value(std::int64_t{0})

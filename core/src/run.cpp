@@ -48,6 +48,17 @@ class Executor {
     return !(interruptible && interrupted());
   }
 
+  /// SOLVE; with `keep`, a StepFailure does not fail the run but is returned in `step_failure`
+  /// (empty otherwise), for the loop to retreat.
+  bool run_solve(bool keep, std::string& step_failure) {
+    keep_step_failures_ = keep;
+    step_failure_.clear();
+    const bool ok = run_bin(Bin::solve);
+    keep_step_failures_ = false;
+    step_failure = step_failure_;
+    return ok;
+  }
+
   /// Latches the first stopping signal, with where the run stood.
   bool interrupted() {
     if (signal_ == 0 && interrupt_signal() != 0) {
@@ -100,6 +111,13 @@ class Executor {
         state_.in_loop ? fmt::format("{} (iteration {})", entry.full_name(), state_.iteration) : entry.full_name();
     try {
       body(contexts_.at(entry.plugin));
+    } catch (const StepFailure& e) {
+      // Kept apart while a retreat may follow; the loop decides whether it fails the run.
+      if (keep_step_failures_)
+        step_failure_ = fmt::format("{}: {}", where, e.what());
+      else
+        fail(fmt::format("{}: {}", where, e.what()), exit_run_failed);
+      ok = false;
     } catch (const RunFailure& e) {
       fail(fmt::format("{}: {}", where, e.what()), exit_run_failed);
       ok = false;
@@ -128,8 +146,35 @@ class Executor {
   std::vector<Timer> timers_;
   std::string failure_;
   int failure_code_ = 0;
+  bool keep_step_failures_ = false;
+  std::string step_failure_;
   int signal_ = 0;
 };
+
+// SOLVE; after a StepFailure, RETREAT (each plugin undoes the last UPDATE and what the failed solve
+// left), UPDATE again with half the step, SOLVE again, at most `max_retreats` times (physics-notes'
+// fold guard: "halve (sigma - sigma_old) and retry"). Returns the retreats taken, or -1 on failure.
+int solve_with_retreats(Executor& exec, const Log& log, RunState& state, int max_retreats) {
+  std::string step_failure;
+  bool ok = exec.run_solve(max_retreats > 0, step_failure);
+  int retreats = 0;
+  while (!ok && !step_failure.empty()) {
+    if (retreats == max_retreats) {
+      exec.fail(fmt::format("{} (the outer step was halved {} times first, run.max_retreats = {})", step_failure, retreats,
+                            max_retreats),
+                exit_run_failed);
+      break;
+    }
+    ++retreats;
+    state.step_fraction *= 0.5;
+    log.warn("{}; retreat {} of at most {}: the last update is undone and taken again at {} of its step", step_failure,
+             retreats, max_retreats, state.step_fraction);
+    ok = exec.run_bin(Bin::retreat) && exec.run_bin(Bin::update) && exec.run_solve(true, step_failure);
+  }
+  // The next update is a full step again: backtrack only on failure.
+  state.step_fraction = 1;
+  return ok ? retreats : -1;
+}
 
 bool has_loop(const Schedule& schedule) {
   return schedule.count(Bin::solve) || schedule.count(Bin::update) || schedule.count(Bin::check);
@@ -298,6 +343,8 @@ RunResult run(const Configuration& config, const RunOptions& options) {
   const bool reached_loop = ok;
   if (ok && has_loop(config.schedule)) {
     const int max_iterations = static_cast<int>(run_params.integer("max_iterations"));
+    // Retreating needs an UPDATE to undo (not before iteration 2) and someone to undo it.
+    const int max_retreats = config.schedule.count(Bin::retreat) ? static_cast<int>(run_params.integer("max_retreats")) : 0;
     const bool has_checks = config.schedule.count(Bin::check) > 0;
     bool converged = false;
     std::string detail;
@@ -310,7 +357,8 @@ RunResult run(const Configuration& config, const RunOptions& options) {
       state.history.emplace_back();
       state.progress.clear();
       std::vector<std::string> waiting;
-      ok = exec.run_bin(Bin::solve) && exec.run_bin(Bin::update) && exec.run_checks(converged, detail, waiting);
+      const int retreats = solve_with_retreats(exec, log, state, it > 1 ? max_retreats : 0);
+      ok = retreats >= 0 && exec.run_bin(Bin::update) && exec.run_checks(converged, detail, waiting);
       result.iterations = it;
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - iteration_start).count();
       state.history.back()["seconds"] = seconds;
@@ -320,6 +368,7 @@ RunResult run(const Configuration& config, const RunOptions& options) {
         // The terminal gets one line per iteration, the log every check's detail as well.
         std::string line = fmt::format("iteration {}/{}:", it, max_iterations);
         for (const auto& [name, value] : state.progress) line += fmt::format(" {} {:.9g}", name, value);
+        if (retreats > 0) line += fmt::format(", {} retreat(s)", retreats);
         line += fmt::format(", {:.2f} s", seconds);
         if (has_checks) line += converged ? ", converged" : fmt::format(", waiting for {}", fmt::join(waiting, ", "));
         log.info(line);

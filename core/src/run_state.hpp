@@ -21,6 +21,7 @@ struct RunState {
   std::filesystem::path run_dir;
   RunDirectory* directory = nullptr;  ///< records what the run writes; null for check and schedule
   int iteration = 0;
+  double step_fraction = 1;  ///< see Context::step_fraction
   bool in_loop = false;
   std::vector<std::pair<std::string, double>> scalars;  ///< summary.json order: first set, first listed
   std::vector<std::string> history_columns;

@@ -111,7 +111,8 @@ std::string format_schedule(const Schedule& schedule) {
     }
     if (it == schedule.end()) continue;
     const char* indent = in_loop(bin) ? "  " : "";
-    out += fmt::format("{}{}\n", indent, to_string(bin));
+    out += fmt::format("{}{}{}\n", indent, to_string(bin),
+                       bin == Bin::retreat ? " (only after a SOLVE step failure; then UPDATE and SOLVE again)" : "");
     for (const auto* e : it->second)
       out += fmt::format("{}  {:<36} {}\n", indent, e->full_name(), e->doc);
   }

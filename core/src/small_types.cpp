@@ -14,6 +14,8 @@ InputError::InputError(const std::string& what) : std::runtime_error(what) {}
 InputError::~InputError() = default;
 RunFailure::RunFailure(const std::string& what) : std::runtime_error(what) {}
 RunFailure::~RunFailure() = default;
+StepFailure::StepFailure(const std::string& what) : RunFailure(what) {}
+StepFailure::~StepFailure() = default;
 Interrupted::Interrupted(const std::string& what) : std::runtime_error(what) {}
 Interrupted::~Interrupted() = default;
 
@@ -28,6 +30,7 @@ const char* to_string(Bin bin) {
     case Bin::solve: return "SOLVE";
     case Bin::update: return "UPDATE";
     case Bin::check: return "CHECK";
+    case Bin::retreat: return "RETREAT";
     case Bin::analysis: return "ANALYSIS";
     case Bin::output: return "OUTPUT";
     case Bin::terminate: return "TERMINATE";
@@ -35,11 +38,11 @@ const char* to_string(Bin bin) {
   return "?";
 }
 
-bool in_loop(Bin bin) { return bin == Bin::solve || bin == Bin::update || bin == Bin::check; }
+bool in_loop(Bin bin) { return bin == Bin::solve || bin == Bin::update || bin == Bin::check || bin == Bin::retreat; }
 
 const std::vector<Bin>& all_bins() {
-  static const std::vector<Bin> bins{Bin::paramcheck, Bin::startup, Bin::setup,    Bin::initial, Bin::solve,
-                                     Bin::update,  Bin::check,      Bin::analysis, Bin::output,  Bin::terminate};
+  static const std::vector<Bin> bins{Bin::paramcheck, Bin::startup, Bin::setup,   Bin::initial,  Bin::solve, Bin::update,
+                                     Bin::check,      Bin::retreat, Bin::analysis, Bin::output, Bin::terminate};
   return bins;
 }
 

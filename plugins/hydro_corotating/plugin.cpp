@@ -35,10 +35,10 @@ StarSettings settings_from(const core::ParamSection& p) {
 }
 
 std::string history_table(const Star& star) {
-  std::string out = "# iteration\tsigma\tomega_hat\tbernoulli_constant\tx_c\tchange\tmatter_points\n";
+  std::string out = "# iteration\tsigma\tomega_hat\tbernoulli_constant\tx_c\tchange\tmatter_points\tstep_fraction\n";
   for (const StepReport& r : star.history())
-    out += fmt::format("{}\t{:.15e}\t{:.15e}\t{:.15e}\t{:.15e}\t{:.6e}\t{}\n", r.iteration, r.after.sigma,
-                       r.after.omega_hat, r.after.bernoulli, r.after.x_c, r.change, r.matter_points);
+    out += fmt::format("{}\t{:.15e}\t{:.15e}\t{:.15e}\t{:.15e}\t{:.6e}\t{}\t{}\n", r.iteration, r.after.sigma,
+                       r.after.omega_hat, r.after.bernoulli, r.after.x_c, r.change, r.matter_points, r.fraction);
   return out;
 }
 
@@ -100,16 +100,25 @@ void declare(core::PluginBuilder& b) {
       .doc("TOV initial guess: rho0, chi = psi_TOV, eta = alpha_TOV psi_TOV about xhat_C");
 
   b.schedule(Bin::update, "outer_step", [state](Context& ctx) {
-     const StepReport r = state->star->step();
+     const StepReport r = state->star->step(ctx.step_fraction());
      ctx.show_progress("sigma", r.after.sigma);
      if (r.after.omega_hat != 0) ctx.show_progress("omega_hat", r.after.omega_hat);
      ctx.show_progress("bernoulli_constant", r.after.bernoulli);
      ctx.show_progress("star_rest_mass", state->fluid->rest_mass());
      ctx.show_progress("star_change", r.change);
-     ctx.log().detail("outer step {}: sigma = {:.12g}, Omegahat = {:.9g}, C_B = {:.12g}, xhat_C = {:.6g}, change {:.3e}{}",
+     ctx.log().detail("outer step {}: sigma = {:.12g}, Omegahat = {:.9g}, C_B = {:.12g}, xhat_C = {:.6g}, change {:.3e}{}{}",
                     r.iteration, r.after.sigma, r.after.omega_hat, r.after.bernoulli, r.after.x_c, r.change,
+                    r.fraction < 1 ? fmt::format(" ({} of the Newton step)", r.fraction) : "",
                     r.converged ? " (converged)" : "");
-   }).doc("Newton solve for (sigma, C_B) with the TOV sigma-model, Bernoulli reset of rho0, flood fill");
+   }).doc("Newton solve for (sigma, C_B) with the TOV sigma-model, Bernoulli reset of rho0, flood fill; after a retreat "
+          "the constants move only run's step fraction of the Newton step");
+
+  b.schedule(Bin::retreat, "undo_step", [state](Context& ctx) {
+     state->star->retreat();
+     const StarConstants& c = state->fluid->constants;
+     ctx.log().detail("hydro_corotating: back at sigma = {:.12g}, Omegahat = {:.9g}, C_B = {:.12g}", c.sigma, c.omega_hat,
+                      c.bernoulli);
+   }).doc("the star's constants back to before its last outer step (UPDATE then resets the density with a shorter step)");
 
   b.check("star_converged", [state](Context&) {
      const auto& h = state->star->history();

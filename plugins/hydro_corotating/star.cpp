@@ -122,9 +122,21 @@ std::vector<double> conformal_factor_field(Grid& grid, int chi, int puncture_phi
 
 }  // namespace
 
-StepReport Star::step() {
+void Star::retreat() {
+  if (history_.empty() || history_.back().converged || !settings_.iterate)
+    throw RunFailure("hydro_corotating: no outer step of the star to undo (its last step changed nothing)");
+  const StepReport& last = history_.back();
+  fluid_->constants = last.before;
+  m0_change_ = last.m0_change_before;
+  undone_rest_mass_ = last.rest_mass_before;
+  history_.pop_back();
+}
+
+StepReport Star::step(double fraction) {
   StepReport report;
   report.iteration = static_cast<int>(history_.size()) + 1;
+  report.fraction = fraction;
+  report.m0_change_before = m0_change_;
   // Set again below when this step converges: the loop may go on for another check's sake, and a
   // step that resets the density must let the black hole follow.
   fluid_->converged = false;
@@ -183,16 +195,19 @@ StepReport Star::step() {
     solved = {r.sigma, r.bernoulli};
     omega = r.omega_hat;
   }
-  report.after.sigma = solved.sigma;
-  report.after.bernoulli = solved.bernoulli;
-  report.after.omega_hat = omega;
+  // A retreat's shorter step: every constant of the Newton solution the same fraction of the way,
+  // so that the density stays between two consistent states.
+  report.after.sigma = now.sigma + fraction * (solved.sigma - now.sigma);
+  report.after.bernoulli = now.bernoulli + fraction * (solved.bernoulli - now.bernoulli);
+  // (The first step with a hole sets Omegahat from nothing: it has no earlier value to lie between.)
+  report.after.omega_hat = now.omega_hat > 0 ? now.omega_hat + fraction * (omega - now.omega_hat) : omega;
   report.change = std::max(std::fabs(solved.sigma / now.sigma - 1), std::fabs(solved.bernoulli / now.bernoulli - 1));
   if (hole_ && now.omega_hat > 0) report.change = std::max(report.change, std::fabs(omega / now.omega_hat - 1));
   if (hole_ && now.omega_hat == 0) report.change = std::max(report.change, 1.0);  // the first step sets Omegahat
   // Converged: keep the density the fields were just solved with, so the output is consistent;
   // the Bernoulli equation then holds to about the tolerance (physics-notes §4.2).
   // M0 moves with sigma and the density: the last reset's change of M0 must have settled too (§4.2).
-  if (std::max(report.change, m0_change_) < settings_.tolerance && report.iteration > 1) {
+  if (std::max(report.change, m0_change_) < settings_.tolerance && report.iteration > 1 && fraction == 1) {
     report.converged = true;
     fluid_->converged = true;
     report.after = now;
@@ -200,7 +215,10 @@ StepReport Star::step() {
     history_.push_back(report);
     return report;
   }
-  const double m0_before = fluid_->rest_mass();
+  // After a retreat the density is still the undone step's: M0 before it is the one it recorded.
+  const double m0_before = undone_rest_mass_ > 0 ? undone_rest_mass_ : fluid_->rest_mass();
+  undone_rest_mass_ = 0;
+  report.rest_mass_before = m0_before;
   report.matter_points = bernoulli_reset(report.after, alpha, phi);
   now.sigma = report.after.sigma;
   now.bernoulli = report.after.bernoulli;

@@ -35,6 +35,9 @@ struct StepReport {
   double change = 0;  ///< max(|d sigma / sigma|, |d Omegahat / Omegahat|, |d C_B / C_B|, |d M0 / M0|)
   bool converged = false;
   int matter_points = 0;
+  double fraction = 1;         ///< of the Newton step taken (1/2^m after m retreats)
+  double rest_mass_before = 0;  ///< M0 before the reset, and the change of M0 before it, for retreat()
+  double m0_change_before = 1;
 };
 
 class Star {
@@ -49,8 +52,14 @@ class Star {
   /// phi_ext^2), phi_ext = 1 + delta (the hole shrinks the star; R_iso/Rhat lies above the fold).
   void set_initial();
   /// One outer step after a field solve; keeps the old density when converged, so that the
-  /// written fields and their sources stay a consistent pair.
-  StepReport step();
+  /// written fields and their sources stay a consistent pair. `fraction` < 1 (after a retreat):
+  /// sigma, Omegahat and C_B move that fraction of the way from the last constants to the Newton
+  /// solution (physics-notes §4.4: "halve (sigma - sigma_old) and retry"), and the step is never
+  /// judged converged.
+  StepReport step(double fraction = 1);
+  /// Undoes the last step's constants (the next step() resets the density again from the restored
+  /// fields); throws RunFailure when there is no applied step to undo.
+  void retreat();
 
   double rhat_star() const { return 0.5 * (1.0 - settings_.x_a); }
   const std::vector<StepReport>& history() const { return history_; }
@@ -80,6 +89,7 @@ class Star {
   std::shared_ptr<StarFluid> fluid_;
   const Puncture* hole_;
   double m0_change_ = 1;  ///< |d M0 / M0| of the last reset
+  double undone_rest_mass_ = 0;  ///< M0 before the step retreat() undid (0: none), for the next step
   std::vector<StepReport> history_;
   int rho0_, press_, enthalpy_, chi_, eta_, puncture_phi_;
 };

@@ -143,7 +143,7 @@ void CoarseSolver::solve(int level) {
     residual_vector(level, r);
     const double next = r.lpNorm<Eigen::Infinity>();
     if (!std::isfinite(next))
-      throw core::RunFailure("multigrid: the coarsest-level Newton solve produced a non-finite residual");
+      throw core::StepFailure("multigrid: the coarsest-level Newton solve produced a non-finite residual");
     const double ratio = next / norm;
     norm = next;
     if (ratio > 0.5) {

@@ -86,6 +86,11 @@ void declare(core::PluginBuilder& b) {
                                            layout->field_bytes(core::Storage::all_levels));
         m.add(ctx.plugin(), "scratch",
               fmt::format("FAS scratch for {:.0f} unknown components at {}", unknowns, layout->describe()), scratch);
+        if (ctx.max_retreats() > 0)
+          m.add(ctx.plugin(), "retreat",
+                fmt::format("a copy of the finest level's {:.0f} unknown components at {}, for RETREAT (run.max_retreats)",
+                            unknowns, layout->describe()),
+                unknowns * layout->field_bytes(core::Storage::finest_only));
         const Level& coarsest = layout->levels().back();
         const double rows = unknowns * coarsest.nx * coarsest.ny * coarsest.nz;
         check_coarse_rows(rows, coarsest, layout->describe());
@@ -143,6 +148,8 @@ void declare(core::PluginBuilder& b) {
        ctx.log().info("solving {} equation(s) together: {}; {} of the grid's {} levels", equations.size(), names,
                       state->solver->levels(), grid.num_levels());
      }
+     // From the second iteration the start is kept, so that RETREAT can undo a failed solve.
+     if (ctx.iteration() > 1 && ctx.max_retreats() > 0) state->solver->keep_start();
      // last_report() also holds the history of a failed solve, for OUTPUT.
      try {
        state->solver->solve(ctx.iteration() > 0 ? static_cast<int>(ctx.params().integer("loop_cycles")) : 0);
@@ -164,6 +171,12 @@ void declare(core::PluginBuilder& b) {
        ctx.set_scalar("multigrid_tau_" + r.equations[s], last.tau[s]);
      }
    }).doc("FAS multigrid solve of every equation.* service");
+
+  b.schedule(Bin::retreat, "restore_start", [state](Context& ctx) {
+     if (!state->solver || !state->solver->restore_start())
+       throw core::RunFailure("multigrid: no start of the failed solve was kept to go back to");
+     ctx.log().detail("multigrid: the unknowns are back at the start of the failed solve");
+   }).doc("the unknowns back to the start of the failed solve (a copy kept from iteration 2 on)");
 
   b.check("converged", [state](Context&) {
      return core::Convergence{state->report.converged, state->report.message};

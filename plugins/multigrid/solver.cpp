@@ -365,6 +365,7 @@ SolveReport FasSolver::solve(int cycle_cap) {
     for (const Slot& s : slots_)
       if (std::string h = s.eq->failure_hint(); !h.empty()) hints += fmt::format("; {}: {}", s.name, h);
     if (hints.empty()) throw;
+    if (dynamic_cast<const core::StepFailure*>(&failure)) throw core::StepFailure(failure.what() + hints);
     throw RunFailure(failure.what() + hints);
   }
 }
@@ -479,7 +480,7 @@ SolveReport FasSolver::solve_cycles(int cycle_cap) {
       // tau = 9e-3 for the momentum constraint once the others' sources moved), and the coupling
       // lifts it in one cycle without anything diverging.
       if (r > settings_.divergence_factor * std::max({first[s], rec.tau[s], 1e-300}))
-        throw RunFailure(fmt::format("multigrid: equation '{}' diverges: |r| = {:.3e} after cycle {}, {:.3e} at the start",
+        throw core::StepFailure(fmt::format("multigrid: equation '{}' diverges: |r| = {:.3e} after cycle {}, {:.3e} at the start",
                                      slots_[s].name, r, number, first[s]));
     }
     if (converged) {
@@ -511,14 +512,14 @@ SolveReport FasSolver::solve_cycles(int cycle_cap) {
       std::size_t worst = 0;
       for (std::size_t s = 0; s < slots_.size(); ++s)
         if (rec.residual[s] / std::max(before[s], 1e-300) >= progress) worst = s;
-      throw RunFailure(fmt::format(
+      throw core::StepFailure(fmt::format(
           "multigrid: stagnated: equation '{}' reduced its residual by less than a factor {} in {} cycles in a row "
           "(|r| = {:.3e}, |tau| = {:.3e}, target r/tau = {:.1e})",
           slots_[worst].name, settings_.stall_factor, settings_.stall_cycles, rec.residual[worst], rec.tau[worst],
           settings_.tau_factor));
     }
   }
-  throw RunFailure(fmt::format("multigrid: not converged in multigrid.max_cycles = {} cycles ({})", settings_.max_cycles,
+  throw core::StepFailure(fmt::format("multigrid: not converged in multigrid.max_cycles = {} cycles ({})", settings_.max_cycles,
                                describe(report.history.back())));
 }
 

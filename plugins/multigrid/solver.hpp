@@ -81,8 +81,8 @@ class FasSolver {
   FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations, Settings settings, core::Log log);
   ~FasSolver();
 
-  /// Solves to the stopping criterion; throws core::RunFailure on NaN, divergence, stagnation or
-  /// max_cycles, naming the equation and, for NaN, the point, followed by every equation's
+  /// Solves to the stopping criterion; throws core::StepFailure on NaN, divergence, stagnation or
+  /// max_cycles (a smaller outer step may cure them), core::RunFailure on a broken setup, naming the equation and, for NaN, the point, followed by every equation's
   /// failure_hint().
   /// cycle_cap > 0: stop unconverged (not failed) after that many cycles, keeping the fields for
   /// the next solve to continue (an outer iteration whose sources still move).
@@ -90,6 +90,11 @@ class FasSolver {
   const std::vector<Slot>& slots() const { return slots_; }
   /// The levels the cycle uses: the grid's, cut above the first level too coarse for a Robin centre.
   int levels() const { return levels_; }
+  /// Copies the finest level's unknowns (and whether they are a converged solution), so that a
+  /// failed solve can be undone.
+  void keep_start();
+  /// Puts back what keep_start() copied; false when nothing was kept.
+  bool restore_start();
   /// The history of the last solve, also after it failed.
   const SolveReport& last_report() const { return report_; }
 
@@ -144,6 +149,8 @@ class FasSolver {
   std::unique_ptr<CoarseSolver> coarse_;
   SolveReport report_;
   bool warm_ = false;  ///< the fields hold the last converged solve's solution
+  std::vector<double> start_;  ///< keep_start(): every unknown component of the finest level
+  bool start_warm_ = false, has_start_ = false;
   // Pointer tables handed to the equations: [slot][level][component].
   std::vector<std::vector<std::vector<const double*>>> rhs_ptrs_;
 };

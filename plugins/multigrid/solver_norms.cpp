@@ -10,7 +10,6 @@
 
 namespace bhnsid::multigrid {
 
-using core::RunFailure;
 
 double FasSolver::rms_interior(const Slot& s, const std::vector<const double*>& field, int l) const {
   const Level& lv = grid_.level(l);
@@ -66,7 +65,7 @@ void FasSolver::fail_nonfinite(int cycle_number) {
             for (int i = 0; i < lv.nx; ++i) {
               const double x = v[lv.at(i, j, k)];
               if (!std::isfinite(x))
-                throw RunFailure(fmt::format(
+                throw core::StepFailure(fmt::format(
                     "multigrid: {} of equation '{}' (component {}) is {} at point ({}, {}, {}) = ({:.6g}, {:.6g}, "
                     "{:.6g}) after {}",
                     which == s.u ? "the solution" : "the residual", s.name, c, x, i, j, k, lv.x(i), lv.y(j), lv.z(k),
@@ -81,7 +80,7 @@ void FasSolver::fail_nonfinite(int cycle_number) {
             }
       }
     }
-  throw RunFailure(fmt::format(
+  throw core::StepFailure(fmt::format(
       "multigrid: the residual norm overflows after {}: the largest value is {} = {:.3e} of equation '{}' "
       "(component {}) at point ({}, {}, {}) = ({:.6g}, {:.6g}, {:.6g})",
       cycle_number == 0 ? "the FMG start" : fmt::format("cycle {}", cycle_number),

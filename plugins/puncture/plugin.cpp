@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/errors.hpp"
@@ -29,6 +30,12 @@ class Hole final : public Puncture {
   std::array<double, 3> momentum() const override { return p; }
   double mass = 0;
   std::array<double, 3> x{}, p{};
+  /// The values before the last binary update, for RETREAT.
+  struct Saved {
+    double mass;
+    std::array<double, 3> x, p;
+  };
+  std::optional<Saved> before_update;
 };
 
 std::array<double, 3> vec3(const std::vector<double>& v) { return {v.at(0), v.at(1), v.at(2)}; }
@@ -128,7 +135,10 @@ void declare(core::PluginBuilder& b) {
      const double mu = ctx.params().real("mass_ratio");
      const auto* fluid = ctx.services().find<Fluid>("hydro");
      // At the converged step the star kept its sources: so does the hole (consistent output).
-     if (!(mu > 0) || !fluid || fluid->settled()) return;
+     if (!(mu > 0) || !fluid || fluid->settled()) {
+       hole->before_update.reset();  // this update changed nothing
+       return;
+     }
      auto& grid = ctx.services().get<Grid>("grid");
      const double m0 = fluid->rest_mass();
      HoleValues h = scaled_hole(grid, *fluid, ctx.services().get<TovFamily>("tov_family"), mu, m0);
@@ -138,6 +148,7 @@ void declare(core::PluginBuilder& b) {
      ctx.show_progress("bh_momentum_y_hat", h.momentum[1]);
      ctx.log().detail("puncture: Mhat_BH = {:.12g}, xhat_BH = {:.12g}, Phat_y = {:.6e} (M0 = {:.12g})", h.mass, h.position[0],
                     h.momentum[1], m0);
+     hole->before_update = Hole::Saved{hole->mass, hole->x, hole->p};
      hole->mass = h.mass;
      hole->x = h.position;
      hole->p = h.momentum;
@@ -145,6 +156,17 @@ void declare(core::PluginBuilder& b) {
       .after("hydro.outer_step")
       .doc("with mass_ratio > 0, after the star's outer step: Mhat_BH = mu_bn M_NS(M0)/sigma, xhat_BH = -xhat_C/mu_bn, "
            "Phat_y = -sigma^2 Int phi^10 j^y; skipped at the converged step");
+
+  b.schedule(Bin::retreat, "undo_update", [hole](Context& ctx) {
+     // Without a binary update since the last one undone there is nothing to put back.
+     if (!hole->before_update) return;
+     hole->mass = hole->before_update->mass;
+     hole->x = hole->before_update->x;
+     hole->p = hole->before_update->p;
+     hole->before_update.reset();
+     ctx.log().detail("puncture: back at Mhat_BH = {:.12g}, xhat_BH = {:.12g}, Phat_y = {:.6e}", hole->mass, hole->x[0],
+                      hole->p[1]);
+   }).doc("the hole's mass, position and momentum back to before its last binary update");
 
   b.schedule(Bin::analysis, "report", [hole](Context& ctx) {
      const auto* fluid = ctx.services().find<Fluid>("hydro");

@@ -51,7 +51,7 @@ TEST_CASE("plugins.hydro_corotating.small_binary_converges", "[plugins][hydro_co
   std::istringstream row(last);
   std::vector<double> cols;
   for (std::string cell; std::getline(row, cell, '\t');) cols.push_back(std::stod(cell));
-  REQUIRE(cols.size() == 7);
+  REQUIRE(cols.size() == 8);
   CHECK(cols[5] < 1e-6);
 
   // The stable summary keys of issue 20, every one a finite number.

@@ -41,6 +41,12 @@ class Context {
   void show_progress(const std::string& name, double value);
   /// Current loop iteration (1-based), 0 before the loop.
   int iteration() const;
+  /// The fraction of its full step an UPDATE entry takes: 1, or 1/2^m when this iteration's SOLVE
+  /// failed m times with a StepFailure and RETREAT undid the previous update each time.
+  double step_fraction() const;
+  /// run.max_retreats: 0 when no SOLVE failure is ever retreated from (a plugin then keeps no
+  /// state for RETREAT).
+  int max_retreats() const;
   /// The run directory; empty for `bhnsid check` and `schedule`.
   const std::filesystem::path& run_directory() const;
   /// Writes run_directory()/relative_name atomically (temporary name, fsync, rename).

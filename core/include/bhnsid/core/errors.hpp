@@ -19,6 +19,16 @@ class RunFailure : public std::runtime_error {
   ~RunFailure() override;
 };
 
+/// A SOLVE entry's failure that a smaller outer step may cure (a solve that diverged, produced
+/// non-finite values or stalled after the sources moved): inside the loop, when RETREAT entries
+/// exist and run.max_retreats allows, the core runs RETREAT, then UPDATE again with half the step
+/// (Context::step_fraction), then SOLVE; elsewhere it is an ordinary RunFailure.
+class StepFailure : public RunFailure {
+ public:
+  explicit StepFailure(const std::string& what);
+  ~StepFailure() override;
+};
+
 /// A stopping signal ended a command early (exit 128 + the signal, see interrupt.hpp).
 class Interrupted : public std::runtime_error {
  public:

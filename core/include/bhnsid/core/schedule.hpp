@@ -2,6 +2,9 @@
 // Schedule bins and entries. PARAMCHECK runs first, before the run directory exists and also in
 // `bhnsid check`, so its entries may only read parameters; STARTUP..INITIAL then run once, SOLVE/UPDATE/CHECK form the loop, then
 // ANALYSIS, OUTPUT and TERMINATE run once, also after a failed loop so the last state is kept.
+// RETREAT runs only when a SOLVE entry fails with a StepFailure: each entry undoes what its plugin
+// changed since that SOLVE began or in the UPDATE before it, and UPDATE then runs again with a
+// smaller step.
 #include <functional>
 #include <string>
 #include <vector>
@@ -10,7 +13,7 @@ namespace bhnsid::core {
 
 class Context;
 
-enum class Bin { paramcheck, startup, setup, initial, solve, update, check, analysis, output, terminate };
+enum class Bin { paramcheck, startup, setup, initial, solve, update, check, retreat, analysis, output, terminate };
 
 const char* to_string(Bin bin);
 bool in_loop(Bin bin);
