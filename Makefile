@@ -7,7 +7,7 @@ FUZZ_SECONDS ?= 30
 
 CMAKE_FLAGS = -G Ninja -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps build run test test-asan fuzz fuzz-check clean
+.PHONY: all deps build run test test-viz test-asan fuzz fuzz-check clean
 
 all: build
 
@@ -25,6 +25,13 @@ run: build
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# ParaView (pvbatch, on a virtual X display) opens a run's data.xdmf, probes it against h5py and
+# renders the equatorial plane (tests/viz/check_viz.py).
+test-viz: build
+	@scripts/install-deps.sh --viz
+	mkdir -p $(BUILD)/test-viz
+	/usr/bin/python3 tests/viz/check_viz.py $(BUILD)/bin/bhnsid . $(BUILD)/test-viz
 
 $(BUILD_ASAN)/build.ninja: | deps
 	cmake -S . -B $(BUILD_ASAN) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBHNSID_SANITIZE=ON

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages bhnsid needs, and only those that are missing: `apt-get update`
 # runs once, and not at all when everything is already there. Safe to run any number of times.
-# `--bench` adds what the peer comparison (bench/compare_hypre.sh) needs: hypre and MPI.
+# `--bench` adds what the peer comparison (bench/compare_hypre.sh) needs: hypre and MPI; `--viz`
+# what `make test-viz` needs: ParaView and a virtual X display.
 set -euo pipefail
 
 packages=(
@@ -10,11 +11,15 @@ packages=(
   libeigen3-dev libhdf5-dev                          # physics plugins: small dense algebra, field output
   catch2                                             # tests
   clang libclang-rt-14-dev libomp-dev                # make fuzz, make fuzz-check (libFuzzer, OpenMP for clang)
-  python3 python3-numpy python3-matplotlib           # validation plots
+  python3 python3-numpy python3-matplotlib python3-h5py  # validation plots, reading data.h5
 )
-if [ "${1:-}" = "--bench" ]; then
-  packages+=(libhypre-dev libopenmpi-dev openmpi-bin)  # the hypre peer of bench/compare_hypre.sh
-fi
+for option in "$@"; do
+  case "$option" in
+    --bench) packages+=(libhypre-dev libopenmpi-dev openmpi-bin) ;;  # the hypre peer of bench/compare_hypre.sh
+    --viz) packages+=(paraview xvfb xauth) ;;  # make test-viz: ParaView's pvbatch on a virtual X display
+    *) echo "install-deps: unknown option $option (expected --bench or --viz)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

@@ -71,6 +71,51 @@ void Context::write_output(const std::string& relative_name, const std::string& 
   write_file_atomic(state_->run_dir / relative_name, contents);
 }
 
+namespace {
+
+std::filesystem::path checked_output_name(const std::string& plugin, const std::string& relative_name) {
+  const std::filesystem::path name = std::filesystem::path(relative_name).lexically_normal();
+  if (name.empty() || name.is_absolute() || *name.begin() == ".." || *name.begin() == "." || !name.has_filename() ||
+      name.has_parent_path())
+    throw std::logic_error(fmt::format("plugin '{}' writes '{}': expected a file name in the run directory", plugin,
+                                       relative_name));
+  return name;
+}
+
+}  // namespace
+
+std::filesystem::path Context::begin_output(const std::string& relative_name) const {
+  const std::filesystem::path name = checked_output_name(decl_->name, relative_name);
+  if (state_->directory) {
+    state_->directory->record(name.string());
+    state_->directory->record(name.string() + ".partial");
+  }
+  return state_->run_dir / (name.string() + ".partial");
+}
+
+void Context::commit_output(const std::string& relative_name) const {
+  const std::filesystem::path name = checked_output_name(decl_->name, relative_name);
+  commit_file(state_->run_dir / (name.string() + ".partial"), state_->run_dir / name);
+}
+
+void Context::abandon_output(const std::string& relative_name) const {
+  std::error_code ignored;
+  std::filesystem::remove(state_->run_dir / (checked_output_name(decl_->name, relative_name).string() + ".partial"), ignored);
+}
+
 const std::vector<VariableSpec>& Context::variables() const { return state_->config.variables; }
+
+RunRecord Context::run_record() const {
+  RunRecord r;
+  r.parameter_file = state_->config.file.text;
+  r.resolved_parameters = state_->resolved_parameters;
+  r.provenance = state_->provenance;
+  r.scalars = state_->scalars;
+  r.failure = state_->failure;
+  r.initial_data = state_->initial_data;
+  for (const PluginDecl* decl : state_->config.decls)
+    for (const std::string& capability : decl->implements) r.implementations.emplace_back(capability, decl->name);
+  return r;
+}
 
 }  // namespace bhnsid::core

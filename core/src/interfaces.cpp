@@ -2,6 +2,7 @@
 // class's type information and vtable in the core library, so that every plugin shares them.
 #include "bhnsid/interfaces/elliptic.hpp"
 #include "bhnsid/interfaces/eos.hpp"
+#include "bhnsid/interfaces/export.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "bhnsid/interfaces/tov_family.hpp"
@@ -15,5 +16,6 @@ Eos::~Eos() = default;
 TovFamily::~TovFamily() = default;
 Fluid::~Fluid() = default;
 Puncture::~Puncture() = default;
+FieldExport::~FieldExport() = default;
 
 }  // namespace bhnsid

@@ -1,5 +1,7 @@
 #include "bhnsid/core/parfile.hpp"
 
+#include <fstream>
+#include <iterator>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -52,7 +54,13 @@ ParFile parse_parfile(const YamlNode& root) {
   return file;
 }
 
-ParFile load_parfile(const std::filesystem::path& path) { return parse_parfile(read_yaml_file(path)); }
+ParFile load_parfile(const std::filesystem::path& path) {
+  ParFile file = parse_parfile(read_yaml_file(path));
+  // read_yaml_file has checked that the file exists, is readable and not too large.
+  std::ifstream in(path, std::ios::binary);
+  file.text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return file;
+}
 
 void apply_override(ParFile& file, const std::string& assignment) {
   const std::string where = "--set " + assignment;

@@ -96,6 +96,7 @@ class Executor {
     if (failure_.empty()) {
       failure_ = message;
       failure_code_ = code;
+      state_.failure = message;
     }
     log_.warn("run failed: {}", message);
   }
@@ -307,16 +308,19 @@ RunResult run(const Configuration& config, const RunOptions& options) {
   state.run_dir = options.run_directory;
   state.directory = &directory;
   const Provenance prov = provenance(options.command_line);
+  state.provenance = {{"version", prov.version},   {"git_revision", prov.git_revision}, {"build_type", prov.build_type},
+                      {"compiler", prov.compiler}, {"host", prov.host},                 {"date", prov.date},
+                      {"command_line", prov.command_line}};
   try {
     directory.record("log.txt.partial");
     directory.record("log.txt");
     state.sink.open_file(state.run_dir / "log.txt.partial");
     state.sink.set_verbose(options.verbose);
     directory.record("params.yaml");
-    write_file_atomic(state.run_dir / "params.yaml",
-                      resolved_parfile_yaml(config, fmt::format("# Resolved parameters of the run started by:\n#   {}\n"
-                                                                "# Run this file to reproduce it.\n",
-                                                                comment_safe(options.command_line))));
+    state.resolved_parameters = resolved_parfile_yaml(config, fmt::format("# Resolved parameters of the run started by:\n#   {}\n"
+                                                                          "# Run this file to reproduce it.\n",
+                                                                          comment_safe(options.command_line)));
+    write_file_atomic(state.run_dir / "params.yaml", state.resolved_parameters);
   } catch (const InputError&) {
     // Nothing has run yet: leave no half-made run directory behind.
     state.sink.abandon();
@@ -341,6 +345,7 @@ RunResult run(const Configuration& config, const RunOptions& options) {
   // PARAMCHECK ran in check_parameters() above.
   for (Bin bin : {Bin::startup, Bin::setup, Bin::initial}) ok = ok && exec.run_bin(bin);
   const bool reached_loop = ok;
+  state.initial_data = ok;
   if (ok && has_loop(config.schedule)) {
     const int max_iterations = static_cast<int>(run_params.integer("max_iterations"));
     // Retreating needs an UPDATE to undo (not before iteration 2) and someone to undo it.

@@ -27,6 +27,10 @@ struct RunState {
   std::vector<std::string> history_columns;
   std::vector<std::map<std::string, double>> history;  ///< one row per loop iteration
   std::vector<std::pair<std::string, double>> progress;  ///< show_progress() of this iteration
+  std::string resolved_parameters;                        ///< params.yaml as written
+  std::vector<std::pair<std::string, std::string>> provenance;
+  std::string failure;  ///< the first failure, once there is one
+  bool initial_data = false;  ///< STARTUP to INITIAL completed
 };
 
 }  // namespace bhnsid::core

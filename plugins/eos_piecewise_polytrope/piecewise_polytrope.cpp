@@ -87,6 +87,16 @@ PiecewisePolytrope::PiecewisePolytrope(const CoreParams& core, std::string label
   }
 }
 
+EosUnits PiecewisePolytrope::units() const {
+  EosUnits u;
+  u.system = "G = c = M_sun = 1";
+  u.length_km = units::length_cm * 1e-5;
+  u.time_s = units::time_s;
+  u.mass_msun = 1;
+  u.density_g_cm3 = units::density_g_cm3;
+  return u;
+}
+
 std::string PiecewisePolytrope::describe() const {
   return fmt::format(
       "piecewise polytrope {} (Read et al. 2009, SLy crust): log10 p1 = {} dyn/cm^2, Gamma1..3 = {}, {}, {}; "

@@ -67,6 +67,7 @@ class PiecewisePolytrope final : public Eos {
   double dpressure_drho0(double rho0) const override;
   double rho0_from_enthalpy(double h) const override;
   double rho0_from_pressure(double P) const override;
+  EosUnits units() const override;  // G = c = M_sun = 1 (units.hpp)
 
   const std::vector<Piece>& pieces() const { return pieces_; }
   /// Density (code units) where the crust meets the core.

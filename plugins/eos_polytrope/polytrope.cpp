@@ -12,6 +12,16 @@ Polytrope::Polytrope(double gamma, double k) : gamma_(gamma), k_(k) {
   if (!(std::isfinite(k) && k > 0.0)) throw std::invalid_argument(fmt::format("K = {}: expected > 0", k));
 }
 
+EosUnits Polytrope::units() const {
+  EosUnits u;
+  // P = K rho0^Gamma with G = c = 1 fixes the length unit K^(n/2), n = 1/(Gamma - 1): the star is the
+  // same for every K, and a user's physical K sets the scale.
+  u.system = fmt::format("G = c = 1, K = {:g}: scale free; for a physical K_phys (in G = c = M_sun = 1 units) every "
+                         "length, time and mass is multiplied by (K_phys/K)^(1/(2(Gamma-1))) M_sun (Gamma = {:g})",
+                         k_, gamma_);
+  return u;
+}
+
 std::string Polytrope::describe() const { return fmt::format("polytrope Gamma={:g} K={:g}", gamma_, k_); }
 
 double Polytrope::pressure(double rho0) const { return rho0 <= 0 ? 0.0 : k_ * std::pow(rho0, gamma_); }

@@ -20,6 +20,7 @@ class Polytrope final : public Eos {
   double dpressure_drho0(double rho0) const override;           // Gamma K rho0^(Gamma-1)
   double rho0_from_enthalpy(double h) const override;           // [(h-1)(Gamma-1)/(K Gamma)]^(1/(Gamma-1))
   double rho0_from_pressure(double P) const override;           // (P/K)^(1/Gamma)
+  EosUnits units() const override;                              // scale free: says how a physical K sets them
 
   double gamma() const { return gamma_; }
   double k() const { return k_; }

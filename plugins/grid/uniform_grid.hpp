@@ -25,6 +25,7 @@ class UniformGrid final : public Grid {
   int field_id(const std::string& name) const override;
   bool has_field(const std::string& name) const override { return field_ids_.count(name) != 0; }
   const FieldInfo& field_info(int field) const override;
+  int num_fields() const override { return static_cast<int>(fields_.size()); }
   double* data(int field, int component, int level) override;
   const double* data(int field, int component, int level) const override;
 

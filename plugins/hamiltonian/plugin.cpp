@@ -6,6 +6,7 @@
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/plugin.hpp"
 #include "bhnsid/interfaces/elliptic.hpp"
+#include "bhnsid/interfaces/export.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "hamiltonian.hpp"
@@ -20,11 +21,36 @@ struct State {
   std::shared_ptr<HamiltonianEquation> equation;
 };
 
+// gamma_ij = phi^4 delta_ij (conformal flatness) in the coordinates x = sigma xhat, where the
+// components keep their values (the metric is dimensionless).
+std::shared_ptr<FieldExport> metric_export(Grid& grid) {
+  auto out = std::make_shared<FieldExportList>();
+  Grid* g = &grid;
+  const char* names[6] = {"gxx", "gxy", "gxz", "gyy", "gyz", "gzz"};
+  for (int c = 0; c < 6; ++c) {
+    const bool diagonal = c == 0 || c == 3 || c == 5;
+    const Parity parity{c == 2 || c == 4 ? -1 : 1, 1};
+    out->add({"ADMBase", names[c], "1", parity,
+              diagonal ? "phi^4, phi = Mhat_BH/(2 rhat_BH) + chi (eq. ham_hat)" : "0 (conformally flat)",
+              c == 3 || c == 5 ? "gxx" : ""},
+             [g, diagonal](double* gij) {
+               const double* chi = g->data(g->field_id(fields::chi), 0, 0);
+               const double* pphi = g->data(g->field_id(fields::puncture_phi), 0, 0);
+               for_stored_points(g->finest(), [&](std::ptrdiff_t p) {
+                 const double phi2 = (pphi[p] + chi[p]) * (pphi[p] + chi[p]);
+                 gij[p] = diagonal ? phi2 * phi2 : 0.0;
+               });
+             });
+  }
+  return out;
+}
+
 void declare(core::PluginBuilder& b) {
   auto state = std::make_shared<State>();
   b.require("grid");
   b.require("elliptic_solver");
   b.implements("equation.hamiltonian");
+  b.implements("export.hamiltonian");
   b.memory([](const Context& ctx, core::MemoryEstimate& m) {
     m.count(memory_unknown_components, 1);
     if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
@@ -46,9 +72,10 @@ void declare(core::PluginBuilder& b) {
      const auto* puncture = ctx.services().find<Puncture>("puncture");
      state->equation = std::make_shared<HamiltonianEquation>(grid, fluid, puncture, ctx.params().real("test_matter_scale"));
      ctx.publish<EllipticEquation>("equation.hamiltonian", state->equation);
+     ctx.publish<FieldExport>("export.hamiltonian", metric_export(grid));
      ctx.log().info("Hamiltonian constraint for chi: {}, {}", fluid ? "with matter" : "vacuum",
                     puncture ? "with a puncture" : "no black hole");
-   }).doc("register chi, puncture_phi, aa_hat, publish the equation");
+   }).doc("register chi, puncture_phi, aa_hat, publish the equation and the export of gxx ... gzz");
 
   b.schedule(Bin::initial, "initial_data", [](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");

@@ -11,6 +11,7 @@
 #include "bhnsid/core/plugin.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
+#include "matter_export.hpp"
 #include "star.hpp"
 
 namespace bhnsid::hydro_corotating {
@@ -50,6 +51,7 @@ void declare(core::PluginBuilder& b) {
   b.require("equation.hamiltonian");
   b.require("equation.lapse");
   b.implements("hydro");
+  b.implements("export.hydro_corotating");
   b.memory([](const Context& ctx, core::MemoryEstimate& m) {
     if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
       layout->estimate_fields(m, ctx.plugin(), fields::fluid_sizes);
@@ -85,6 +87,7 @@ void declare(core::PluginBuilder& b) {
      const auto& family = ctx.services().get<TovFamily>("tov_family");
      state->star = std::make_unique<Star>(grid, eos, family, settings_from(ctx.params()), state->fluid,
                                          ctx.services().find<Puncture>("puncture"));
+     ctx.publish<FieldExport>("export.hydro_corotating", matter_export(grid, eos, *state->fluid));
      const StarConstants& c = state->fluid->constants;
      ctx.log().info("static star, {}: rho_max = {}, xhat_C = {}, Rhat = {}, initial sigma = {:.9g}, C_B = {:.9g}",
                     eos.describe(), ctx.params().real("rho_max"), c.x_c, state->star->rhat_star(), c.sigma, c.bernoulli);
@@ -92,7 +95,8 @@ void declare(core::PluginBuilder& b) {
       .after("hamiltonian.setup")
       .after("lapse.setup")
       .after("tov.publish_family")
-      .doc("TOV star of rho_max, initial sigma and C_B, fluid fields");
+      .doc("TOV star of rho_max, initial sigma and C_B, fluid fields; publish the export of rho, press, eps, vel, "
+           "w_lorentz");
 
   b.schedule(Bin::initial, "initial_data", [state](Context&) { state->star->set_initial(); })
       .after("hamiltonian.initial_data")

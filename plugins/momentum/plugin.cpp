@@ -8,6 +8,7 @@
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/plugin.hpp"
 #include "bhnsid/interfaces/elliptic.hpp"
+#include "bhnsid/interfaces/export.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "momentum.hpp"
@@ -23,11 +24,34 @@ struct State {
   CurvatureChange last;  ///< of the fill after the last solve
 };
 
+// K_ij = phi^-2 A_ij (A_ij = phi^2 K_ij, physics-notes §1.2), A = Ahat / sigma in the coordinates
+// x = sigma xhat (§1.3): Bowen-York and Zhat together, as the last solve left them.
+std::shared_ptr<FieldExport> curvature_export(Grid& grid, const Fluid* fluid) {
+  auto out = std::make_shared<FieldExportList>();
+  Grid* g = &grid;
+  const char* names[6] = {"kxx", "kxy", "kxz", "kyy", "kyz", "kzz"};
+  for (int c = 0; c < 6; ++c)
+    out->add({"ADMBase", names[c], "1/length", Parity{c == 2 || c == 4 ? -1 : 1, 1},
+              "the extrinsic curvature K_ij = phi^-2 (Ahat_BY + Zhat)_ij / sigma (K = 0, maximal slicing)"},
+             [g, fluid, c](double* k) {
+               const double inv_sigma = fluid ? 1.0 / fluid->sigma() : 1.0;
+               const double* a = g->data(g->field_id(fields::ahat), c, 0);
+               const double* chi = g->data(g->field_id(fields::chi), 0, 0);
+               const double* pphi = g->data(g->field_id(fields::puncture_phi), 0, 0);
+               for_stored_points(g->finest(), [&](std::ptrdiff_t p) {
+                 const double phi = pphi[p] + chi[p];
+                 k[p] = a[p] * inv_sigma / (phi * phi);
+               });
+             });
+  return out;
+}
+
 void declare(core::PluginBuilder& b) {
   auto state = std::make_shared<State>();
   b.require("grid");
   b.require("elliptic_solver");
   b.implements("equation.momentum");
+  b.implements("export.momentum");
   b.memory([](const Context& ctx, core::MemoryEstimate& m) {
     m.count(memory_unknown_components, 3);
     if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
@@ -52,12 +76,14 @@ void declare(core::PluginBuilder& b) {
      const auto* puncture = ctx.services().find<Puncture>("puncture");
      state->equation = std::make_shared<MomentumEquation>(grid, fluid, puncture, ctx.params().real("test_source_scale"));
      ctx.publish<EllipticEquation>("equation.momentum", state->equation);
+     ctx.publish<FieldExport>("export.momentum", curvature_export(grid, fluid));
      ctx.log().info("momentum constraint for W^i: {}, {}", fluid ? "with matter" : "vacuum",
                     puncture ? "with a Bowen-York puncture" : "no black hole");
    })
       .after("hamiltonian.setup")
       .after("lapse.setup")
-      .doc("check that chi, eta, puncture_phi exist; register wvec, ahat, aa_hat; publish the equation");
+      .doc("check that chi, eta, puncture_phi exist; register wvec, ahat, aa_hat; publish the equation and the export of "
+           "kxx ... kzz");
 
   b.schedule(Bin::solve, "curvature", [state](Context&) { state->equation->fill_curvature(); })
       .before("multigrid.solve")

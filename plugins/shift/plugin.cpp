@@ -7,6 +7,7 @@
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/plugin.hpp"
 #include "bhnsid/interfaces/elliptic.hpp"
+#include "bhnsid/interfaces/export.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "shift.hpp"
@@ -42,6 +43,7 @@ void declare(core::PluginBuilder& b) {
   b.require("grid");
   b.require("elliptic_solver");
   b.implements("equation.shift");
+  b.implements("export.shift");
   b.memory([](const Context& ctx, core::MemoryEstimate& m) {
     m.count(memory_unknown_components, 3);
     if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
@@ -111,6 +113,19 @@ void declare(core::PluginBuilder& b) {
      settings.coarse_local_sweeps = static_cast<int>(ctx.params().integer("coarse_local_sweeps"));
      state->equation = std::make_shared<ShiftEquation>(grid, fluid, puncture, settings);
      ctx.publish<EllipticEquation>("equation.shift", state->equation);
+     // beta^i = dx^i/dt keeps its values under x = sigma xhat, t = sigma that; inside the excision
+     // cube it is the held beta_0 (finite, not a solution there).
+     auto out = std::make_shared<FieldExportList>();
+     Grid* g = &grid;
+     const char* names[3] = {"betax", "betay", "betaz"};
+     for (int c = 0; c < 3; ++c)
+       out->add({"ADMBase", names[c], "1", Parity{c == 2 ? -1 : 1, 1},
+                 "the shift beta^i (eq. mindist_hat); inside the excision cube the held value beta_0"},
+                [g, c](double* beta) {
+                  const double* b = g->data(g->field_id(fields::shift), c, 0);
+                  for_stored_points(g->finest(), [&](std::ptrdiff_t p) { beta[p] = b[p]; });
+                });
+     ctx.publish<FieldExport>("export.shift", out);
      ctx.log().info("minimal-distortion shift: {}, {}", fluid ? "with matter" : "vacuum",
                     puncture ? "with an excised puncture" : "no black hole");
      if (puncture) log_excision(ctx, state->equation->update_puncture());
@@ -118,7 +133,8 @@ void declare(core::PluginBuilder& b) {
       .after("hamiltonian.setup")
       .after("lapse.setup")
       .after("momentum.setup")
-      .doc("check chi, eta, ahat; register beta (and the excision mask); publish the equation");
+      .doc("check chi, eta, ahat; register beta (and the excision mask); publish the equation and the export of betax, "
+           "betay, betaz");
 
   b.schedule(Bin::solve, "excision", [state](Context& ctx) {
      const ExcisionReport r = state->equation->update_puncture();

@@ -37,10 +37,10 @@ std::vector<std::vector<double>> star_history(const std::filesystem::path& run) 
 TEST_CASE("plugins.hydro_corotating.failed_solve_retreats_with_half_steps", "[plugins][hydro_corotating][binary]") {
   TempDir dir;
   const std::string quickstart = read_file(source_dir() / "parfiles" / "quickstart.yaml");
-  const auto at = quickstart.find("diagnostics]");
+  const auto at = quickstart.find("diagnostics,");
   REQUIRE(at != std::string::npos);
   std::string faulty = quickstart;
-  faulty.replace(at, 12, "diagnostics, tp_step_failure]");
+  faulty.replace(at, 12, "diagnostics, tp_step_failure,");
   faulty += "\ntp_step_failure:\n  fail_at: 5\n  failures: 2\n  converge_after: 0\n";
   const auto parfile = dir.write("faulty.yaml", faulty);
   const auto clean_run = dir.path() / "clean", faulty_run = dir.path() / "faulty";

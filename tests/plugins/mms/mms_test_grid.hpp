@@ -58,6 +58,7 @@ class MemoryGrid final : public Grid {
   }
   bool has_field(const std::string& name) const override { return ids_.count(name) != 0; }
   const FieldInfo& field_info(int field) const override { return fields_.at(static_cast<std::size_t>(field)).info; }
+  int num_fields() const override { return static_cast<int>(fields_.size()); }
   double* data(int field, int component, int level) override {
     return const_cast<double*>(static_cast<const MemoryGrid&>(*this).data(field, component, level));
   }

@@ -15,6 +15,17 @@ namespace bhnsid::core {
 
 struct RunState;
 
+/// What the core knows of the run, for an output plugin that records it beside the fields.
+struct RunRecord {
+  std::string parameter_file;       ///< the input file's text as read (the --set overrides are in the next)
+  std::string resolved_parameters;  ///< params.yaml: every value, which reproduces the run
+  std::vector<std::pair<std::string, std::string>> provenance;  ///< version, git_revision, ... as in summary.json
+  std::vector<std::pair<std::string, double>> scalars;          ///< every scalar set so far
+  std::string failure;  ///< empty unless the run has failed so far (OUTPUT also runs after a failure)
+  bool initial_data = false;  ///< INITIAL completed: there is a state (OUTPUT also runs after an early signal)
+  std::vector<std::pair<std::string, std::string>> implementations;  ///< (capability, active plugin)
+};
+
 class Context {
  public:
   Context(RunState& state, const PluginDecl& decl);
@@ -51,6 +62,13 @@ class Context {
   const std::filesystem::path& run_directory() const;
   /// Writes run_directory()/relative_name atomically (temporary name, fsync, rename).
   void write_output(const std::string& relative_name, const std::string& contents) const;
+  /// For an output that a library writes through a path (HDF5): records `relative_name` and its
+  /// temporary `relative_name.partial` as this run's and returns the temporary's path; commit_output
+  /// fsyncs it and renames it into place, abandon_output removes it (after a failed write).
+  std::filesystem::path begin_output(const std::string& relative_name) const;
+  void commit_output(const std::string& relative_name) const;
+  void abandon_output(const std::string& relative_name) const;
+  RunRecord run_record() const;
   /// Every variable declared by an active plugin, in plugin order.
   const std::vector<VariableSpec>& variables() const;
 

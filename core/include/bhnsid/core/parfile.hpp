@@ -20,6 +20,7 @@ struct ParSection {
 
 struct ParFile {
   std::string source;
+  std::string text;  ///< the file as read (load_parfile), for the run's records; empty for a parsed tree
   std::vector<std::string> plugins;
   std::vector<TextPos> plugin_pos;
   std::vector<ParSection> sections;  ///< in file order, `plugins` excluded

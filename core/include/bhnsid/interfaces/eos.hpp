@@ -10,6 +10,13 @@
 
 namespace bhnsid {
 
+/// What one code unit is, for output metadata; 0 where the EOS is scale free (the K = 1 polytrope:
+/// `system` then says how a physical K sets the units).
+struct EosUnits {
+  std::string system = "G = c = 1";
+  double length_km = 0, time_s = 0, mass_msun = 0, density_g_cm3 = 0;
+};
+
 class Eos : public core::Service {
  public:
   ~Eos() override;  ///< defined in the core library (see grid.hpp)
@@ -29,6 +36,7 @@ class Eos : public core::Service {
   virtual double rho0_from_enthalpy(double h) const = 0;
   /// Inverse of pressure(): rho0 with pressure(rho0) = P, for P >= 0.
   virtual double rho0_from_pressure(double P) const = 0;
+  virtual EosUnits units() const { return {}; }
   /// Total energy density e = rho0 (1 + eps).
   double energy_density(double rho0) const { return rho0 * (1.0 + specific_internal_energy(rho0)); }
 };

@@ -143,6 +143,8 @@ class Grid : public core::Service {
   virtual int field_id(const std::string& name) const = 0;
   virtual bool has_field(const std::string& name) const = 0;
   virtual const FieldInfo& field_info(int field) const = 0;
+  /// Registered fields: their ids are 0 .. num_fields() - 1, in the order of registration.
+  virtual int num_fields() const = 0;
   /// The array of one component on one level (Level::size doubles, 64-byte aligned).
   virtual double* data(int field, int component, int level) = 0;
   virtual const double* data(int field, int component, int level) const = 0;
