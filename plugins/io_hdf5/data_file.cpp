@@ -7,6 +7,7 @@
 #include <set>
 
 #include "bhnsid/core/errors.hpp"
+#include "bhnsid/core/interrupt.hpp"
 #include "h5_file.hpp"
 
 namespace bhnsid::io_hdf5 {
@@ -45,7 +46,9 @@ DataFile write_data_file(const std::string& path, const Grid& grid, const std::v
   const hid_t root = file.root();
   file.attribute(root, "format", std::string("bhnsid-data"));
   file.attribute(root, "format_version", format_version);
-  file.attribute(root, "status", std::string(record.failure.empty() ? "converged" : "failed"));
+  // A stopping signal without a failure: the last state of an interrupted run, not a solution.
+  const char* status = !record.failure.empty() ? "failed" : core::interrupt_signal() != 0 ? "interrupted" : "converged";
+  file.attribute(root, "status", std::string(status));
   file.attribute(root, "failure", record.failure);
   file.attribute(root, "units", std::string(eos.eos ? eos.eos->units().system : "G = c = 1"));
 
