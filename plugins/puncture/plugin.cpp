@@ -174,11 +174,16 @@ void declare(core::PluginBuilder& b) {
      ctx.set_scalar("bh_bare_mass", sigma * hole->mass);
      ctx.set_scalar("bh_position_x", sigma * hole->x[0]);
      ctx.set_scalar("bh_momentum_y", sigma * hole->p[1]);
+     // The whole vectors too, for readers that add the puncture's 1/r exactly (docs/output-format.md).
+     ctx.set_scalar("bh_position_y", sigma * hole->x[1]);
+     ctx.set_scalar("bh_position_z", sigma * hole->x[2]);
+     ctx.set_scalar("bh_momentum_x", sigma * hole->p[0]);
+     ctx.set_scalar("bh_momentum_z", sigma * hole->p[2]);
      ctx.set_scalar("bh_bare_mass_hat", hole->mass);
      ctx.set_scalar("bh_position_x_hat", hole->x[0]);
      ctx.set_scalar("bh_momentum_y_hat", hole->p[1]);
-   }).doc("bh_bare_mass, bh_position_x, bh_momentum_y (physical: sigma times the hatted values) and the hatted "
-          "bh_bare_mass_hat, bh_position_x_hat, bh_momentum_y_hat");
+   }).doc("bh_bare_mass, bh_position_x/y/z, bh_momentum_x/y/z (physical: sigma times the hatted values) and the "
+          "hatted bh_bare_mass_hat, bh_position_x_hat, bh_momentum_y_hat");
 }
 
 }  // namespace

@@ -150,6 +150,14 @@ TEST_CASE("plugins.io_hdf5.every_run_kind_and_a_failed_run", "[plugins][io_hdf5]
     CHECK(f.exists("/ADMBase/betax") == shift);
     CHECK(f.exists("/ADMBase/kxx") == shift);
     if (c.exit_code != 0) CHECK_THAT(f.text("/", "failure"), Contains("run.max_iterations = 3"));
+    if (!star) {
+      // The hole of parfiles/boosted_puncture.yaml: position (0.1, 0, 0), momentum (0, 0.3, 0), sigma = 1.
+      CHECK(f.real("/scalars", "bh_position_x") == 0.1);
+      CHECK(f.real("/scalars", "bh_position_y") == 0.0);
+      CHECK(f.real("/scalars", "bh_position_z") == 0.0);
+      CHECK(f.real("/scalars", "bh_momentum_y") == 0.3);
+      CHECK(f.real("/grid", "sigma") == 1.0);
+    }
   }
 }
 
