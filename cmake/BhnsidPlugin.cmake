@@ -1,4 +1,4 @@
-# bhnsid_add_plugin(NAME SOURCES a.cpp b.cpp ... [TEST_ONLY])
+# bhnsid_add_plugin(NAME SOURCES a.cpp b.cpp ... [TEST_ONLY] [PLOT script.py])
 # Builds libbhnsid_NAME.so into the plugin folder (build/lib/bhnsid), or, for TEST_ONLY plugins
 # used by the core's tests, into build/test-plugins where a normal run never finds them.
 # Only the entry point is exported; everything else stays private to the plugin.
@@ -6,7 +6,7 @@
 define_property(GLOBAL PROPERTY BHNSID_PLUGIN_TARGETS BRIEF_DOCS "plugin targets" FULL_DOCS "all plugin targets")
 
 function(bhnsid_add_plugin name)
-  cmake_parse_arguments(ARG "TEST_ONLY" "" "SOURCES" ${ARGN})
+  cmake_parse_arguments(ARG "TEST_ONLY" "PLOT" "SOURCES" ${ARGN})
   set(target bhnsid_${name})
   # The objects are a target of their own so that the plugin's unit tests (tests/plugins/NAME)
   # can link the same code the shared library is made of.
@@ -29,5 +29,9 @@ function(bhnsid_add_plugin name)
     VISIBILITY_INLINES_HIDDEN ON
     BUILD_RPATH "$ORIGIN/.."
     INSTALL_RPATH "$ORIGIN/..")
+  # PLOT script.py: copied beside the library as NAME.plot.py, which `bhnsid plot RUN_DIR` runs.
+  if(ARG_PLOT)
+    configure_file(${CMAKE_CURRENT_SOURCE_DIR}/${ARG_PLOT} ${out}/${name}.plot.py COPYONLY)
+  endif()
   set_property(GLOBAL APPEND PROPERTY BHNSID_PLUGIN_TARGETS ${target})
 endfunction()

@@ -17,6 +17,8 @@ int cmd_check(const std::string& parfile, const CommonOptions& common);
 int cmd_schedule(const std::string& parfile, const CommonOptions& common);
 int cmd_params(const std::vector<std::string>& plugins, bool yaml, const CommonOptions& common);
 int cmd_plugins(const CommonOptions& common);
+/// Runs the plot script of every plugin of the run that ships one (NAME.plot.py beside its library).
+int cmd_plot(const std::string& run_dir, const std::string& output, const CommonOptions& common);
 
 /// Most resolutions of one validate series: the finest has 8^(levels - 1) times the points of the first.
 inline constexpr int max_validate_levels = 8;

@@ -96,6 +96,12 @@ int main(int argc, char** argv) {
   auto* plugins = app.add_subcommand("plugins", "list the plugins on the plugin path");
   add_plugin_path(plugins);
 
+  std::string run_dir, plot_output;
+  auto* plot = app.add_subcommand("plot", "PNG pictures of a run: every plugin of the run that ships a plot script draws its part");
+  plot->add_option("run_dir", run_dir, "a run directory (of bhnsid run)")->required();
+  plot->add_option("--output", plot_output, "folder for the pictures (default RUN_DIR/plots)");
+  add_plugin_path(plot);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -122,6 +128,7 @@ int main(int argc, char** argv) {
       if (schedule->parsed()) code = cli::cmd_schedule(parfile, common);
       if (params->parsed()) code = cli::cmd_params(plugin_names, yaml, common);
       if (plugins->parsed()) code = cli::cmd_plugins(common);
+      if (plot->parsed()) code = cli::cmd_plot(run_dir, plot_output, common);
       if (std::fflush(stdout) != 0 || std::ferror(stdout))
         throw std::system_error(errno, std::generic_category(), "standard output");
     } catch (const std::filesystem::filesystem_error&) {
