@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <csignal>
 #include <cmath>
 #include <map>
 #include <string>
@@ -173,4 +174,21 @@ TEST_CASE("plugins.io_hdf5.non_finite_field_is_never_written", "[plugins][io_hdf
   CHECK_FALSE(std::filesystem::exists(out / "data.h5"));
   CHECK_FALSE(std::filesystem::exists(out / "data.h5.partial"));
   CHECK_FALSE(std::filesystem::exists(out / "data.xdmf"));
+}
+
+TEST_CASE("plugins.io_hdf5.interrupted_run_is_marked_interrupted", "[plugins][io_hdf5][signals]") {
+  // SIGTERM during the first field solve (after the initial data): the run stops between multigrid
+  // cycles, and data.h5 holds that last state marked "interrupted", not "converged".
+  TempDir dir;
+  const auto out = dir.path() / "run";
+  Background run({"run", (source_dir() / "parfiles" / "boosted_puncture.yaml").string(), "--output", out.string(),
+                  "--set", "grid.n=96", "--set", "grid.dx=0.4166666666666667", "--set", "multigrid.tau_factor=1e-9"});
+  REQUIRE(wait_for_text(out / "log.txt.partial", "solving 4 equation(s) together", 120));
+  run.signal(SIGTERM);
+  const ProcessResult r = run.wait(120);
+  INFO(r.out << r.err);
+  CHECK(r.exit_code == 143);
+  const H5Reader f((out / "data.h5").string());
+  CHECK(f.text("/", "status") == "interrupted");
+  CHECK(f.text("/", "failure").empty());
 }
