@@ -170,6 +170,8 @@ int solve_with_retreats(Executor& exec, const Log& log, RunState& state, int max
     state.step_fraction *= 0.5;
     log.warn("{}; retreat {} of at most {}: the last update is undone and taken again at {} of its step", step_failure,
              retreats, max_retreats, state.step_fraction);
+    // Cleared first: a RETREAT or UPDATE that fails, or a signal, ends the loop as what it is.
+    step_failure.clear();
     ok = exec.run_bin(Bin::retreat) && exec.run_bin(Bin::update) && exec.run_solve(true, step_failure);
   }
   // The next update is a full step again: backtrack only on failure.

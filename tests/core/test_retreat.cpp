@@ -72,4 +72,6 @@ TEST_CASE("core.retreat.not_at_the_first_iteration_nor_when_off", "[core][run][r
   CHECK(refused.process.exit_code == 1);
   CHECK_THAT(refused.summary["message"].get<std::string>(),
              Contains("tp_step_failure.retreat (iteration 2)") && Contains("retreats are off"));
+  // The refusal ends the loop at once: no second retreat is tried.
+  CHECK_THAT(refused.process.err, Contains("retreat 1 of at most 4") && !Contains("retreat 2 of"));
 }
