@@ -90,13 +90,12 @@ class Executor {
   }
 
   const std::vector<Timer>& timers() const { return timers_; }
-  const std::string& failure() const { return failure_; }
+  const std::string& failure() const { return state_.failure; }
   int failure_code() const { return failure_code_; }
   void fail(const std::string& message, int code) {
-    if (failure_.empty()) {
-      failure_ = message;
+    if (state_.failure.empty()) {
+      state_.failure = message;  // also what Context::run_record() reports
       failure_code_ = code;
-      state_.failure = message;
     }
     log_.warn("run failed: {}", message);
   }
@@ -145,7 +144,6 @@ class Executor {
   Log log_;
   std::map<std::string, Context> contexts_;
   std::vector<Timer> timers_;
-  std::string failure_;
   int failure_code_ = 0;
   bool keep_step_failures_ = false;
   std::string step_failure_;
