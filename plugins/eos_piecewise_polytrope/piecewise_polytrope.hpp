@@ -68,6 +68,11 @@ class PiecewisePolytrope final : public Eos {
   double rho0_from_enthalpy(double h) const override;
   double rho0_from_pressure(double P) const override;
   EosUnits units() const override;  // G = c = M_sun = 1 (units.hpp)
+  std::vector<PolytropePiece> polytrope_pieces() const override {
+    std::vector<PolytropePiece> out;
+    for (const Piece& p : pieces_) out.push_back({p.rho_lo, p.k, p.gamma, p.a});
+    return out;
+  }
 
   const std::vector<Piece>& pieces() const { return pieces_; }
   /// Density (code units) where the crust meets the core.

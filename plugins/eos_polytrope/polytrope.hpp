@@ -21,6 +21,7 @@ class Polytrope final : public Eos {
   double rho0_from_enthalpy(double h) const override;           // [(h-1)(Gamma-1)/(K Gamma)]^(1/(Gamma-1))
   double rho0_from_pressure(double P) const override;           // (P/K)^(1/Gamma)
   EosUnits units() const override;                              // scale free: says how a physical K sets them
+  std::vector<PolytropePiece> polytrope_pieces() const override { return {{0.0, k_, gamma_, 0.0}}; }
 
   double gamma() const { return gamma_; }
   double k() const { return k_; }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <set>
 
 #include "bhnsid/core/errors.hpp"
@@ -83,6 +84,11 @@ DataFile write_data_file(const std::string& path, const Grid& grid, const std::v
       file.attribute(d, "units", field.units);
       file.attribute(d, "parity_z", static_cast<long long>(field.parity.z));
       file.attribute(d, "description", field.doc);
+      if (const std::optional<ExcisionRegion> held = e->held_region(f)) {
+        file.attribute(d, "held_region_shape", std::string(held->shape == ExcisionRegion::Shape::cube ? "cube" : "sphere"));
+        file.attribute(d, "held_region_centre", std::vector<double>(held->centre.begin(), held->centre.end()));
+        file.attribute(d, "held_region_half_size", held->half_size);
+      }
       out.datasets.push_back(path);
     }
   }
@@ -132,6 +138,22 @@ DataFile write_data_file(const std::string& path, const Grid& grid, const std::v
     file.attribute(eg, "time_s", u.time_s);
     file.attribute(eg, "mass_msun", u.mass_msun);
     file.attribute(eg, "density_g_cm3", u.density_g_cm3);
+    // The formulas themselves, so that a reader recomputes P and eps from rho alone.
+    const std::vector<PolytropePiece> pieces = eos.eos->polytrope_pieces();
+    file.attribute(eg, "model", std::string(pieces.empty() ? "other" : "piecewise_polytrope"));
+    if (!pieces.empty()) {
+      std::vector<double> lo, k, gamma, offset;
+      for (const PolytropePiece& p : pieces) {
+        lo.push_back(p.rho0_lo);
+        k.push_back(p.k);
+        gamma.push_back(p.gamma);
+        offset.push_back(p.eps_offset);
+      }
+      file.attribute(eg, "rho0_lo", lo);
+      file.attribute(eg, "K", k);
+      file.attribute(eg, "Gamma", gamma);
+      file.attribute(eg, "eps_offset", offset);
+    }
   }
 
   const hid_t pg = file.group("/parameters");

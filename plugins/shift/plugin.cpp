@@ -117,6 +117,15 @@ void declare(core::PluginBuilder& b) {
      // cube it is the held beta_0 (finite, not a solution there).
      auto out = std::make_shared<FieldExportList>();
      Grid* g = &grid;
+     const ShiftEquation* eq = state->equation.get();
+     const auto held = [eq, fluid]() -> std::optional<ExcisionRegion> {
+       const std::optional<Cube> cube = eq->held_cube();
+       if (!cube) return std::nullopt;
+       const double sigma = fluid ? fluid->sigma() : 1.0;
+       return ExcisionRegion{ExcisionRegion::Shape::cube,
+                             {sigma * cube->centre[0], sigma * cube->centre[1], sigma * cube->centre[2]},
+                             sigma * cube->half};
+     };
      const char* names[3] = {"betax", "betay", "betaz"};
      for (int c = 0; c < 3; ++c)
        out->add({"ADMBase", names[c], "1", Parity{c == 2 ? -1 : 1, 1},
@@ -124,7 +133,8 @@ void declare(core::PluginBuilder& b) {
                 [g, c](double* beta) {
                   const double* b = g->data(g->field_id(fields::shift), c, 0);
                   for_stored_points(g->finest(), [&](std::ptrdiff_t p) { beta[p] = b[p]; });
-                });
+                },
+                held);
      ctx.publish<FieldExport>("export.shift", out);
      ctx.log().info("minimal-distortion shift: {}, {}", fluid ? "with matter" : "vacuum",
                     puncture ? "with an excised puncture" : "no black hole");

@@ -3,6 +3,7 @@
 // Robin falloff beta -> 0 about the origin (physics-notes §5.2), Dirichlet beta_0 in the excision
 // cube about the puncture (§4.6).
 #include <array>
+#include <optional>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -58,6 +59,12 @@ class ShiftEquation final : public EllipticEquation {
   /// became invalid (the cube reaching the boundary, Mhat <= 0, |v| >= 1). Without a puncture it
   /// does nothing.
   ExcisionReport update_puncture();
+  /// The cube the excision mask was last built for (hatted), none before the first build or
+  /// without a puncture.
+  std::optional<Cube> held_cube() const {
+    if (!puncture_ || !built_) return std::nullopt;
+    return excision(last_mass_, last_position_);
+  }
 
  private:
   Sources sources(int level) const;

@@ -60,6 +60,10 @@ class H5Reader {
     return out;
   }
 
+  bool exists_attribute(const std::string& object, const std::string& name) const {
+    return H5Aexists_by_name(file_, object.c_str(), name.c_str(), H5P_DEFAULT) > 0;
+  }
+
   double real(const std::string& object, const std::string& name) const {
     double v = 0;
     const hid_t a = H5Aopen_by_name(file_, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);

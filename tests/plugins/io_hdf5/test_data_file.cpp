@@ -107,6 +107,32 @@ TEST_CASE("plugins.io_hdf5.binary_data_file_is_complete_and_consistent", "[plugi
         REQUIRE(v["w_lorentz"][p] * v["w_lorentz"][p] * (1 - v2) == Approx(1.0).epsilon(1e-12));
       }
   CHECK(star_points > 20);
+  // The EOS by its formulas, for a reader that recomputes P and eps from rho.
+  CHECK(f.text("/eos", "model") == "piecewise_polytrope");
+  CHECK(f.reals("/eos", "K", 1) == std::vector<double>{1.0});
+  CHECK(f.reals("/eos", "Gamma", 1) == std::vector<double>{2.0});
+  CHECK(f.reals("/eos", "rho0_lo", 1) == std::vector<double>{0.0});
+  // The excision cube about the puncture, where beta is the held beta_0 (one value) and not solved.
+  CHECK(f.text("/ADMBase/betay", "held_region_shape") == "cube");
+  const std::vector<double> centre = f.reals("/ADMBase/betay", "held_region_centre", 3);
+  const double half = f.real("/ADMBase/betay", "held_region_half_size");
+  CHECK(centre[0] == Approx(f.real("/scalars", "bh_position_x")).epsilon(1e-12));
+  CHECK(centre[1] == 0.0);
+  CHECK(half > dx);
+  int held_points = 0;
+  double held_value = 0;
+  for (hsize_t k = 0; k < dims[0]; ++k)
+    for (hsize_t j = 0; j < dims[1]; ++j)
+      for (hsize_t i = 0; i < dims[2]; ++i) {
+        const double x = origin[0] + dx * i, y = origin[1] + dx * j, z = dx * k;
+        if (std::fabs(x - centre[0]) > half || std::fabs(y - centre[1]) > half || std::fabs(z - centre[2]) > half) continue;
+        const double b = v["betay"][(k * dims[1] + j) * dims[2] + i];
+        if (held_points++ == 0) held_value = b;
+        REQUIRE(b == held_value);
+      }
+  CHECK(held_points >= 8);
+  CHECK(held_value != 0.0);
+  CHECK_FALSE(f.exists_attribute("/ADMBase/alp", "held_region_shape"));
   CHECK(rho_max <= 0.1);
   CHECK(rho_max > 0.09);
   // The solver's unknowns, for a reader that adds the puncture's 1/r exactly.

@@ -5,10 +5,18 @@
 //   rho0: rest-mass density; P: pressure; eps: specific internal energy; h = 1 + eps + P/rho0.
 // Functions are defined for rho0 >= 0 (vacuum: P = eps = 0, h = 1) and h >= 1.
 #include <string>
+#include <vector>
 
 #include "bhnsid/core/services.hpp"
 
 namespace bhnsid {
+
+/// One piece of a piecewise polytrope: for rho0_lo <= rho0 (< the next piece's rho0_lo),
+/// P = k rho0^gamma and eps = eps_offset + k rho0^(gamma-1) / (gamma-1). What a reader of the
+/// output needs to recompute P and eps from rho0 alone.
+struct PolytropePiece {
+  double rho0_lo = 0, k = 0, gamma = 0, eps_offset = 0;
+};
 
 /// What one code unit is, for output metadata; 0 where the EOS is scale free (the K = 1 polytrope:
 /// `system` then says how a physical K sets the units).
@@ -37,6 +45,9 @@ class Eos : public core::Service {
   /// Inverse of pressure(): rho0 with pressure(rho0) = P, for P >= 0.
   virtual double rho0_from_pressure(double P) const = 0;
   virtual EosUnits units() const { return {}; }
+  /// The pieces in increasing density when this EOS is a (piecewise) polytrope, else empty: an
+  /// output then cannot describe it by formulas and says so.
+  virtual std::vector<PolytropePiece> polytrope_pieces() const { return {}; }
   /// Total energy density e = rho0 (1 + eps).
   double energy_density(double rho0) const { return rho0 * (1.0 + specific_internal_energy(rho0)); }
 };

@@ -5,6 +5,7 @@
 // and an output plugin writes whatever is published without knowing any of it.
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,22 +34,32 @@ class FieldExport : public core::Service {
   /// in physical units (x = sigma xhat): finite everywhere, the puncture, the excision cube and the
   /// vacuum outside the star included.
   virtual void fill(std::size_t index, double* out) const = 0;
+  /// The region, in physical coordinates, where export_fields()[index] holds a set value rather
+  /// than a solution (the shift's excision cube): a reader may fill it smoothly instead.
+  virtual std::optional<ExcisionRegion> held_region(std::size_t /*index*/) const { return std::nullopt; }
 };
 
 /// A FieldExport made of fields and one fill function each: what a plugin exporting a few fields needs.
 class FieldExportList final : public FieldExport {
  public:
   using Fill = std::function<void(double* out)>;
-  void add(ExportField field, Fill fill) {
+  using Held = std::function<std::optional<ExcisionRegion>()>;
+  void add(ExportField field, Fill fill, Held held = {}) {
     fields_.push_back(std::move(field));
     fills_.push_back(std::move(fill));
+    helds_.push_back(std::move(held));
   }
   std::vector<ExportField> export_fields() const override { return fields_; }
   void fill(std::size_t index, double* out) const override { fills_.at(index)(out); }
+  std::optional<ExcisionRegion> held_region(std::size_t index) const override {
+    const Held& h = helds_.at(index);
+    return h ? h() : std::nullopt;
+  }
 
  private:
   std::vector<ExportField> fields_;
   std::vector<Fill> fills_;
+  std::vector<Held> helds_;
 };
 
 }  // namespace bhnsid
