@@ -35,13 +35,14 @@ void print_params(const PluginDecl& decl) {
 }
 }  // namespace
 
-int cmd_run(const std::string& parfile, const CommonOptions& common, const std::string& output, bool force,
+int cmd_run(const std::string& parfile, const CommonOptions& common, const std::string& output, bool force, bool resume,
             bool verbose) {
   PluginLoader loader = make_loader(common);
   const Configuration config = configure(parfile, common.overrides, loader);
   RunOptions options;
   options.run_directory = output.empty() ? fs::path("runs") / fs::path(parfile).stem() : fs::path(output);
   options.force = force;
+  options.resume = resume;
   options.verbose = verbose;
   options.command_line = common.command_line;
   options.protect.push_back(fs::path(parfile));

@@ -11,7 +11,7 @@ struct CommonOptions {
   std::string command_line;
 };
 
-int cmd_run(const std::string& parfile, const CommonOptions& common, const std::string& output, bool force,
+int cmd_run(const std::string& parfile, const CommonOptions& common, const std::string& output, bool force, bool resume,
             bool verbose);
 int cmd_check(const std::string& parfile, const CommonOptions& common);
 int cmd_schedule(const std::string& parfile, const CommonOptions& common);

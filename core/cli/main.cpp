@@ -3,12 +3,15 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstring>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
 #include <iostream>
+#include <unistd.h>
 
 #include "bhnsid/core/build_info.hpp"
 #include "bhnsid/core/errors.hpp"
@@ -29,11 +32,37 @@ std::string shell_quote(const std::string& arg) {
 // The one error line, best effort: a stderr that cannot be written (a full disk, a closed pipe)
 // must not turn a clean exit code into an abort.
 void complain(const std::string& line) { std::fputs(line.c_str(), stderr); }
+
+// `bhnsid NAME ARGS...` for a NAME that is no built-in command runs `bhnsid-NAME ARGS...` from
+// the executable's folder, git-style: tools built beside bhnsid (bhnsid-export, of the reader)
+// join the command line without the core knowing them. Returns only when there is none.
+void run_external(int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-' || std::string(argv[1]).find('/') != std::string::npos) return;
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) return;
+  const std::filesystem::path tool = exe.parent_path() / (std::string("bhnsid-") + argv[1]);
+  if (::access(tool.c_str(), X_OK) != 0) return;
+  std::fflush(stdout);
+  argv[1] = const_cast<char*>(tool.c_str());
+  ::execv(tool.c_str(), argv + 1);
+  complain(fmt::format("bhnsid: error: cannot run {}: {}\n", tool.string(), std::strerror(errno)));
+  std::exit(core::exit_internal);
+}
 }  // namespace
 
 int main(int argc, char** argv) {
   // A full disk or a file-size limit must reach us as a write error, not kill the process.
   std::signal(SIGXFSZ, SIG_IGN);
+  static const char* const builtin[] = {"run", "check", "schedule", "params", "plugins", "validate", "plot"};
+  if (argc >= 2 && argv[1][0] != '-' &&
+      std::none_of(std::begin(builtin), std::end(builtin), [&](const char* c) { return std::string(c) == argv[1]; })) {
+    run_external(argc, argv);
+    complain(fmt::format("bhnsid: error: unknown command '{}'; expected one of {} or a tool bhnsid-{} beside the "
+                         "executable (bhnsid --help)\n",
+                         argv[1], fmt::join(std::begin(builtin), std::end(builtin), ", "), argv[1]));
+    return core::exit_input;
+  }
 
   cli::CommonOptions common;
   for (int i = 0; i < argc; ++i) common.command_line += (i ? " " : "") + shell_quote(argv[i]);
@@ -47,7 +76,7 @@ int main(int argc, char** argv) {
         ->allow_extra_args(false);  // one folder per flag, so a following parameter file stays positional
   };
   std::string parfile, output;
-  bool force = false, yaml = false, verbose = false;
+  bool force = false, resume = false, yaml = false, verbose = false;
   std::vector<std::string> plugin_names;
 
   auto* run = app.add_subcommand("run", "validate, then run a parameter file and write its run directory");
@@ -55,6 +84,10 @@ int main(int argc, char** argv) {
   run->add_option("--set", common.overrides, "override a parameter: section.key=value (repeatable)")->allow_extra_args(false);
   run->add_option("--output", output, "run directory (default runs/<parfile stem>)");
   run->add_flag("--force", force, "replace an existing run directory");
+  run->add_flag("--resume", resume,
+                "continue the run in the run directory from its newest checkpoint (same parameters and build; "
+                "run.max_iterations may grow)")
+      ->excludes("--force");
   run->add_flag("--verbose", verbose, "print log.txt's detail lines too (every multigrid cycle, every plugin step)");
   add_plugin_path(run);
 
@@ -120,7 +153,7 @@ int main(int argc, char** argv) {
     // must not fail it. Every other command's result is what it prints: the signals keep their
     // default actions (`bhnsid params | head` ends quietly) and a failed write is an error.
     if (run->parsed() || validate->parsed()) core::install_interrupt_handlers();
-    if (run->parsed()) return cli::cmd_run(parfile, common, output, force, verbose);
+    if (run->parsed()) return cli::cmd_run(parfile, common, output, force, resume, verbose);
     if (validate->parsed()) return cli::cmd_validate(parfile, common, vopt);
     int code = core::exit_internal;
     try {

@@ -16,8 +16,11 @@ LogSink::~LogSink() {
   if (file_) std::fclose(file_);
 }
 
-void LogSink::open_file(const std::filesystem::path& partial) {
-  file_ = std::fopen(partial.c_str(), "w");
+void LogSink::open_file(const std::filesystem::path& partial, bool append, const std::filesystem::path& final_path) {
+  std::error_code ec;
+  if (append && !std::filesystem::exists(partial, ec) && !final_path.empty() && std::filesystem::exists(final_path, ec))
+    std::filesystem::copy_file(final_path, partial, ec);
+  file_ = std::fopen(partial.c_str(), append ? "a" : "w");
   if (!file_) throw InputError(fmt::format("{}: cannot create the log: {}", partial.string(), std::strerror(errno)));
   partial_ = partial;
 }

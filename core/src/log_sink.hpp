@@ -15,7 +15,9 @@ class LogSink {
   LogSink& operator=(const LogSink&) = delete;
   ~LogSink();
 
-  void open_file(const std::filesystem::path& partial);
+  /// `append`: a resumed run continues the earlier run's log (the partial one a kill left, or
+  /// `final_path` of one that ended), so that one log.txt tells the whole story.
+  void open_file(const std::filesystem::path& partial, bool append = false, const std::filesystem::path& final_path = {});
   enum class Level { info, warning, detail };
   void write(Level level, const std::string& prefix, const std::string& message);
   /// Detail lines reach the terminal too.

@@ -110,6 +110,11 @@ const PluginDecl& core_declaration() {
         .default_value(std::int64_t{4})
         .at_least(0)
         .at_most(30);
+    b.integer("checkpoint_every")
+        .doc("save the run's state to RUN_DIR/checkpoints every this many loop iterations (and at convergence), the "
+             "newest two kept, for bhnsid run --resume; 0: never")
+        .default_value(std::int64_t{1})
+        .at_least(0);
     b.integer("threads")
         .doc("OpenMP threads for every kernel; 0 keeps OMP_NUM_THREADS or the machine's default")
         .default_value(std::int64_t{0})

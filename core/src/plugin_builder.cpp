@@ -100,6 +100,11 @@ ScheduleHandle PluginBuilder::check(std::string name, CheckFn fn) {
 
 void PluginBuilder::memory(MemoryFn fn, MemoryStage stage) { decl_.memory.push_back(MemoryEstimator{stage, std::move(fn)}); }
 
+void PluginBuilder::checkpoint(CheckpointSaveFn save, CheckpointRestoreFn restore) {
+  decl_.checkpoint_save = std::move(save);
+  decl_.checkpoint_restore = std::move(restore);
+}
+
 namespace {
 bool is_identifier(const std::string& s) {
   if (s.empty() || !std::islower(static_cast<unsigned char>(s[0]))) return false;

@@ -4,6 +4,9 @@
 
 #include <chrono>
 #include <algorithm>
+#include <fstream>
+#include <memory>
+#include <sstream>
 #include <cmath>
 #include <thread>
 #include <nlohmann/json.hpp>
@@ -16,6 +19,7 @@
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/core/interrupt.hpp"
 #include "bhnsid/core/run_directory.hpp"
+#include "run_checkpoint.hpp"
 #include "run_state.hpp"
 
 namespace bhnsid::core {
@@ -89,6 +93,7 @@ class Executor {
     return true;
   }
 
+  Context& context(const std::string& plugin) { return contexts_.at(plugin); }
   const std::vector<Timer>& timers() const { return timers_; }
   const std::string& failure() const { return state_.failure; }
   int failure_code() const { return failure_code_; }
@@ -303,7 +308,10 @@ RunResult run(const Configuration& config, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   // Cross-parameter checks before anything is written: bad input leaves no run directory.
   const MemoryEstimate memory = check_parameters(config);
-  RunDirectory directory(options.run_directory, options.force, "run", options.protect);
+  const std::unique_ptr<RunDirectory> directory_owner =
+      options.resume ? std::make_unique<RunDirectory>(options.run_directory, "run", RunDirectory::ReopenTag{})
+                     : std::make_unique<RunDirectory>(options.run_directory, options.force, "run", options.protect);
+  RunDirectory& directory = *directory_owner;
   RunState state(config);
   state.run_dir = options.run_directory;
   state.directory = &directory;
@@ -311,20 +319,40 @@ RunResult run(const Configuration& config, const RunOptions& options) {
   state.provenance = {{"version", prov.version},   {"git_revision", prov.git_revision}, {"build_type", prov.build_type},
                       {"compiler", prov.compiler}, {"host", prov.host},                 {"date", prov.date},
                       {"command_line", prov.command_line}};
+  const ParamSection& run_params = config.params.at("run");
+#ifdef _OPENMP
+  if (run_params.integer("threads") > 0) omp_set_num_threads(static_cast<int>(run_params.integer("threads")));
+#endif
+  const int checkpoint_every = static_cast<int>(run_params.integer("checkpoint_every"));
+  const std::string build = options.resume || checkpoint_every > 0 ? build_id(config) : std::string();
+  // A resume checks its checkpoint against this build and these parameters before it writes
+  // anything: a refused one leaves the earlier run exactly as it was (warnings reach the terminal).
+  ResumePoint resume;
+  if (options.resume) resume = find_resume_point(state.run_dir, config, build, Log(&state.sink, ""));
   try {
     directory.record("log.txt.partial");
     directory.record("log.txt");
-    state.sink.open_file(state.run_dir / "log.txt.partial");
+    state.sink.open_file(state.run_dir / "log.txt.partial", options.resume, state.run_dir / "log.txt");
     state.sink.set_verbose(options.verbose);
     directory.record("params.yaml");
-    state.resolved_parameters = resolved_parfile_yaml(config, fmt::format("# Resolved parameters of the run started by:\n#   {}\n"
-                                                                          "# Run this file to reproduce it.\n",
-                                                                          comment_safe(options.command_line)));
-    write_file_atomic(state.run_dir / "params.yaml", state.resolved_parameters);
+    std::ifstream earlier(state.run_dir / "params.yaml", std::ios::binary);
+    if (options.resume && earlier) {
+      // The run's own record of its parameters (the checkpoint proved they match) stays as written.
+      std::stringstream text;
+      text << earlier.rdbuf();
+      state.resolved_parameters = text.str();
+    } else {
+      state.resolved_parameters = resolved_parfile_yaml(config, fmt::format("# Resolved parameters of the run started by:\n#   {}\n"
+                                                                            "# Run this file to reproduce it.\n",
+                                                                            comment_safe(options.command_line)));
+      write_file_atomic(state.run_dir / "params.yaml", state.resolved_parameters);
+    }
   } catch (const InputError&) {
-    // Nothing has run yet: leave no half-made run directory behind.
-    state.sink.abandon();
-    directory.abandon();
+    // Nothing has run yet: leave no half-made run directory behind (a resumed one is left alone).
+    if (!options.resume) {
+      state.sink.abandon();
+      directory.abandon();
+    }
     throw;
   }
   const Log log(&state.sink, "");
@@ -332,9 +360,7 @@ RunResult run(const Configuration& config, const RunOptions& options) {
   log.info("run directory: {}", state.run_dir.string());
   log.info("memory: estimated {} (largest: {})", format_bytes(memory.total()), memory.largest(2));
   log.info("schedule:\n{}", format_schedule(config.schedule));
-  const ParamSection& run_params = config.params.at("run");
 #ifdef _OPENMP
-  if (run_params.integer("threads") > 0) omp_set_num_threads(static_cast<int>(run_params.integer("threads")));
   log.info("OpenMP threads: {}", omp_get_max_threads());
 #endif
 
@@ -344,19 +370,37 @@ RunResult run(const Configuration& config, const RunOptions& options) {
   bool ok = true;
   // PARAMCHECK ran in check_parameters() above.
   for (Bin bin : {Bin::startup, Bin::setup, Bin::initial}) ok = ok && exec.run_bin(bin);
+  const ContextOf context_of = [&exec](const std::string& plugin) -> Context& { return exec.context(plugin); };
+  int first_iteration = 1;
+  bool converged = false;
+  if (ok && resume.file) {
+    try {
+      restore_checkpoint(state, context_of, *resume.file);
+      first_iteration = resume.iteration + 1;
+      converged = resume.converged;
+      result.iterations = resume.iteration;
+      log.info("resumed from {} after iteration {}{}", resume.file->path().string(), resume.iteration,
+               converged ? " (converged: straight to ANALYSIS and OUTPUT)" : "");
+    } catch (const std::exception& e) {
+      exec.fail(fmt::format("--resume: {}", e.what()), exit_input);
+      ok = false;
+    }
+    resume.file.reset();
+  }
+  // A run whose restore failed holds the initial guess, not the earlier run's state: no OUTPUT over it.
   const bool reached_loop = ok;
   state.initial_data = ok;
+  bool checkpoint_write_failed = false;
   if (ok && has_loop(config.schedule)) {
     const int max_iterations = static_cast<int>(run_params.integer("max_iterations"));
     // Retreating needs an UPDATE to undo (not before iteration 2) and someone to undo it.
     const int max_retreats = config.schedule.count(Bin::retreat) ? static_cast<int>(run_params.integer("max_retreats")) : 0;
     const bool has_checks = config.schedule.count(Bin::check) > 0;
-    bool converged = false;
     std::string detail;
     state.in_loop = true;
     directory.record("scalars.tsv");
     bool scalars_write_failed = false;
-    for (int it = 1; it <= max_iterations && ok && !converged; ++it) {
+    for (int it = first_iteration; it <= max_iterations && ok && !converged; ++it) {
       const auto iteration_start = std::chrono::steady_clock::now();
       state.iteration = it;
       state.history.emplace_back();
@@ -386,6 +430,19 @@ RunResult run(const Configuration& config, const RunOptions& options) {
       } catch (const InputError& e) {
         if (!scalars_write_failed) log.warn("scalars.tsv not updated during the loop: {}", e.what());
         scalars_write_failed = true;
+      }
+      if (ok && checkpoint_every > 0 && (it % checkpoint_every == 0 || converged || !has_checks)) {
+        // Like scalars.tsv, a checkpoint the disk refuses is said once and does not stop the run.
+        try {
+          save_checkpoint(state, context_of, converged, build);
+          log.detail("iteration {}: checkpoint written", it);
+        } catch (const InputError& e) {
+          if (!checkpoint_write_failed) log.warn("checkpoint not written: {}", e.what());
+          checkpoint_write_failed = true;
+        } catch (const std::exception& e) {
+          exec.fail(fmt::format("writing the checkpoint of iteration {}: internal error: {}", it, e.what()), exit_internal);
+          ok = false;
+        }
       }
       if (!has_checks) break;
     }

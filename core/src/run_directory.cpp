@@ -33,7 +33,12 @@ struct Marker {
   std::string kind;
   long pid = 0;
   std::vector<std::string> files;
+  std::vector<std::string> folders;  ///< sub-directories whose every entry the program wrote
 };
+
+bool listed(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
 
 // Reads the marker; a file of that name in another format is reported, never taken for ours.
 Marker read_marker(const fs::path& dir) {
@@ -47,12 +52,16 @@ Marker read_marker(const fs::path& dir) {
     if (j.at("format") != marker_format || j.at("version") != marker_version) throw std::runtime_error("format");
     m.kind = j.at("kind").get<std::string>();
     m.pid = j.at("pid").get<long>();
-    for (const auto& f : j.at("files")) {
-      const std::string name = f.get<std::string>();
-      if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..")
-        throw std::runtime_error("name");
-      m.files.push_back(name);
-    }
+    const auto names = [](const json& list, std::vector<std::string>& out) {
+      for (const auto& f : list) {
+        const std::string name = f.get<std::string>();
+        if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..")
+          throw std::runtime_error("name");
+        out.push_back(name);
+      }
+    };
+    names(j.at("files"), m.files);
+    if (j.contains("folders")) names(j.at("folders"), m.folders);
   } catch (const std::exception&) {
     throw InputError(fmt::format("{}: {} is not a marker this program wrote (unreadable or another format); not "
                                  "replacing the directory",
@@ -92,8 +101,8 @@ struct OldContents {
 
 void inspect(const fs::path& dir, const Marker& marker, const std::string& prefix, OldContents& out) {
   for (const std::string& name : entries_of(dir)) {
-    if (name == run_marker_name || is_our_temporary(name, marker.files)) continue;
-    if (std::find(marker.files.begin(), marker.files.end(), name) == marker.files.end()) {
+    if (name == run_marker_name || is_our_temporary(name, marker.files) || listed(marker.folders, name)) continue;
+    if (!listed(marker.files, name)) {
       out.foreign.push_back(prefix + name);
       continue;
     }
@@ -121,8 +130,7 @@ void inspect(const fs::path& dir, const Marker& marker, const std::string& prefi
 void remove_old_run(const fs::path& dir, const Marker& marker) {
   for (const std::string& name : entries_of(dir)) {
     if (name == run_marker_name) continue;
-    if (std::find(marker.files.begin(), marker.files.end(), name) == marker.files.end() &&
-        !is_our_temporary(name, marker.files))
+    if (!listed(marker.files, name) && !listed(marker.folders, name) && !is_our_temporary(name, marker.files))
       continue;  // cannot happen after inspect(); never remove what is not listed
     std::error_code ec;
     fs::remove_all(dir / name, ec);
@@ -194,27 +202,7 @@ RunDirectory::RunDirectory(fs::path dir, bool force, std::string kind, const std
                                      p.string()));
     }
   }
-  fd_ = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC | O_NOFOLLOW);
-  if (fd_ < 0) {
-    const int error = errno;
-    if (created_) {
-      ::rmdir(dir_.c_str());
-      remove_created_parents();
-    }
-    throw InputError(fmt::format("{}: cannot open the run directory: {}", dir_.string(), std::strerror(error)));
-  }
-  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-    ::close(fd_);
-    fd_ = -1;
-    long pid = 0;
-    try {
-      pid = read_marker(dir_).pid;
-    } catch (const InputError&) {
-    }
-    throw InputError(fmt::format("{}: in use by another bhnsid process{}; wait for it to finish or choose another "
-                                 "--output",
-                                 dir_.string(), pid > 0 ? fmt::format(" (PID {})", pid) : std::string()));
-  }
+  lock();
   try {
     if (!created_) {
       const Marker old = read_marker(dir_);
@@ -246,6 +234,58 @@ RunDirectory::RunDirectory(fs::path dir, bool force, std::string kind, const std
   }
 }
 
+void RunDirectory::lock() {
+  fd_ = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC | O_NOFOLLOW);
+  if (fd_ < 0) {
+    const int error = errno;
+    if (created_) {
+      ::rmdir(dir_.c_str());
+      remove_created_parents();
+    }
+    throw InputError(fmt::format("{}: cannot open the run directory: {}", dir_.string(), std::strerror(error)));
+  }
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd_);
+    fd_ = -1;
+    long pid = 0;
+    try {
+      pid = read_marker(dir_).pid;
+    } catch (const InputError&) {
+    }
+    throw InputError(fmt::format("{}: in use by another bhnsid process{}; wait for it to finish or choose another "
+                                 "--output",
+                                 dir_.string(), pid > 0 ? fmt::format(" (PID {})", pid) : std::string()));
+  }
+}
+
+RunDirectory::RunDirectory(fs::path dir, std::string kind, ReopenTag)
+    : dir_(std::move(dir)), kind_(std::move(kind)), started_(now_utc()), reopened_(true) {
+  if (dir_.empty()) throw InputError("the run directory name is empty; expected the directory of the run to resume");
+  dir_ = dir_.lexically_normal();
+  if (!dir_.has_filename() && dir_.has_parent_path()) dir_ = dir_.parent_path();
+  struct stat st {};
+  if (::lstat(dir_.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+    throw InputError(fmt::format("{}: there is no run directory to resume (run without --resume to start the run)",
+                                 dir_.string()));
+  lock();
+  try {
+    const Marker old = read_marker(dir_);
+    if (!old.present)
+      throw InputError(fmt::format("{}: is not a bhnsid run directory (no {}); --resume only continues a run this "
+                                   "program wrote",
+                                   dir_.string(), run_marker_name));
+    if (old.kind != kind_)
+      throw InputError(fmt::format("{}: is a bhnsid {} directory, not a {} directory", dir_.string(), old.kind, kind_));
+    files_ = old.files;
+    folders_ = old.folders;
+    write_marker();
+  } catch (...) {
+    ::close(fd_);
+    fd_ = -1;
+    throw;
+  }
+}
+
 RunDirectory::~RunDirectory() {
   if (fd_ >= 0) ::close(fd_);  // releases the lock
 }
@@ -253,6 +293,12 @@ RunDirectory::~RunDirectory() {
 void RunDirectory::record(const std::string& name) {
   if (std::find(files_.begin(), files_.end(), name) != files_.end()) return;
   files_.push_back(name);
+  write_marker();
+}
+
+void RunDirectory::record_folder(const std::string& name) {
+  if (listed(folders_, name)) return;
+  folders_.push_back(name);
   write_marker();
 }
 
@@ -264,13 +310,17 @@ void RunDirectory::write_marker() {
   j["pid"] = static_cast<long>(::getpid());
   j["started"] = started_;
   j["files"] = files_;
+  if (!folders_.empty()) j["folders"] = folders_;
   write_file_atomic(dir_ / run_marker_name, j.dump(1) + "\n");
 }
 
 void RunDirectory::abandon() {
+  if (reopened_) return;  // what a resumed run found there is the earlier run's: never removed
   std::error_code ec;
   for (const std::string& f : files_) fs::remove_all(dir_ / f, ec);
+  for (const std::string& f : folders_) fs::remove_all(dir_ / f, ec);
   files_.clear();
+  folders_.clear();
   fs::remove(dir_ / run_marker_name, ec);
   if (!created_) return;
   fs::remove(dir_, ec);  // only if empty: never more than we made

@@ -95,6 +95,9 @@ void declare(core::PluginBuilder& b) {
      ctx.publish<Grid>("grid", state->grid);
    }).doc("build the level hierarchy and publish the grid service");
 
+  b.checkpoint([state](Context&, core::CheckpointWriter& out) { state->grid->save(out); },
+               [state](Context&, const core::CheckpointReader& in) { state->grid->restore(in); });
+
   b.schedule(Bin::terminate, "report_memory", [state](Context& ctx) {
      if (!state->grid) return;
      ctx.log().info("{:.1f} MiB in grid fields and masks", state->grid->bytes_allocated() / 1048576.0);

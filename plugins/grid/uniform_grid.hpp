@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bhnsid/core/checkpoint.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 #include "blocks.hpp"
 
@@ -45,6 +46,12 @@ class UniformGrid final : public Grid {
   double integrate(const double* values, Parity parity, int level) const override;
   double interpolate(const double* values, Parity parity, int level, std::array<double, 3> point) const override;
   std::vector<std::array<double, 2>> line_x(const double* values, int level) const override;
+
+  /// Every array of every field and mask on every level, ghosts included (grid_checkpoint.cpp):
+  /// the solver's warm state lives on the coarse levels too, so a resumed run continues bit for bit.
+  void save(core::CheckpointWriter& out) const;
+  /// The same arrays back; InputError (from the reader) when a field, level or size differs.
+  void restore(const core::CheckpointReader& in);
 
   /// Bytes held by all fields and masks, for the log.
   std::size_t bytes_allocated() const { return bytes_; }

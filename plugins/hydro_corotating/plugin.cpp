@@ -103,6 +103,9 @@ void declare(core::PluginBuilder& b) {
       .after("lapse.initial_data")
       .doc("TOV initial guess: rho0, chi = psi_TOV, eta = alpha_TOV psi_TOV about xhat_C");
 
+  b.checkpoint([state](Context&, core::CheckpointWriter& out) { state->star->save(out); },
+               [state](Context&, const core::CheckpointReader& in) { state->star->restore(in); });
+
   b.schedule(Bin::update, "outer_step", [state](Context& ctx) {
      const StepReport r = state->star->step(ctx.step_fraction());
      ctx.show_progress("sigma", r.after.sigma);

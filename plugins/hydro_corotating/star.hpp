@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "bhnsid/core/checkpoint.hpp"
 #include "bhnsid/interfaces/eos.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
@@ -60,6 +61,11 @@ class Star {
   /// Undoes the last step's constants (the next step() resets the density again from the restored
   /// fields); throws RunFailure when there is no applied step to undo.
   void retreat();
+
+  /// The constants, the outer steps taken and what the next step and a retreat compare with
+  /// (star_checkpoint.cpp); the density itself is a grid field, saved by the grid.
+  void save(core::CheckpointWriter& out) const;
+  void restore(const core::CheckpointReader& in);
 
   double rhat_star() const { return 0.5 * (1.0 - settings_.x_a); }
   const std::vector<StepReport>& history() const { return history_; }

@@ -46,6 +46,62 @@ void CoarseSolver::index_unknowns(int level) {
   factorised_ = factorised_ && level == factorised_level_ && unknowns_ == previous;
 }
 
+void CoarseSolver::save(core::CheckpointWriter& out) const {
+  out.put_integers("coarse/state", {level_, factorised_level_, factorised_ ? 1 : 0});
+  std::vector<std::int64_t> unknowns;
+  for (const Unknown& x : unknowns_)
+    for (std::int64_t v : {std::int64_t{x.slot}, std::int64_t{x.comp}, std::int64_t{x.point}, std::int64_t{x.i},
+                           std::int64_t{x.j}, std::int64_t{x.k}})
+      unknowns.push_back(v);
+  out.put_integers("coarse/unknowns", unknowns);
+  out.put_integers("coarse/row_of", std::vector<std::int64_t>(row_of_.begin(), row_of_.end()));
+  out.put_integers("coarse/slot_offset", std::vector<std::int64_t>(slot_offset_.begin(), slot_offset_.end()));
+  if (!factorised_) return;
+  const auto nnz = static_cast<std::size_t>(jacobian_.nonZeros());
+  out.put_integers("coarse/jacobian_size", {jacobian_.rows()});
+  out.put_integers("coarse/jacobian_outer",
+                   std::vector<std::int64_t>(jacobian_.outerIndexPtr(), jacobian_.outerIndexPtr() + jacobian_.outerSize() + 1));
+  out.put_integers("coarse/jacobian_inner", std::vector<std::int64_t>(jacobian_.innerIndexPtr(), jacobian_.innerIndexPtr() + nnz));
+  out.put("coarse/jacobian_values", jacobian_.valuePtr(), nnz);
+}
+
+void CoarseSolver::restore(const core::CheckpointReader& in) {
+  const std::vector<std::int64_t> state = in.integers("coarse/state");
+  const std::vector<std::int64_t> unknowns = in.integers("coarse/unknowns");
+  if (state.size() != 3 || unknowns.size() % 6 != 0)
+    throw core::InputError("multigrid: the checkpoint's coarsest-level state is malformed");
+  level_ = static_cast<int>(state[0]);
+  factorised_level_ = static_cast<int>(state[1]);
+  factorised_ = state[2] != 0;
+  unknowns_.clear();
+  for (std::size_t u = 0; u < unknowns.size(); u += 6)
+    unknowns_.push_back(Unknown{static_cast<int>(unknowns[u]), static_cast<int>(unknowns[u + 1]),
+                                static_cast<std::ptrdiff_t>(unknowns[u + 2]), static_cast<int>(unknowns[u + 3]),
+                                static_cast<int>(unknowns[u + 4]), static_cast<int>(unknowns[u + 5])});
+  const std::vector<std::int64_t> rows = in.integers("coarse/row_of"), offsets = in.integers("coarse/slot_offset");
+  row_of_.assign(rows.begin(), rows.end());
+  slot_offset_.assign(offsets.begin(), offsets.end());
+  if (!factorised_) return;
+  const auto n = static_cast<Eigen::Index>(in.integers("coarse/jacobian_size").at(0));
+  const std::vector<std::int64_t> outer = in.integers("coarse/jacobian_outer"), inner = in.integers("coarse/jacobian_inner");
+  const std::vector<double> values = in.reals("coarse/jacobian_values");
+  if (static_cast<Eigen::Index>(outer.size()) != n + 1 || inner.size() != values.size() ||
+      static_cast<std::size_t>(outer.back()) != values.size())
+    throw core::InputError("multigrid: the checkpoint's coarsest-level Jacobian is malformed");
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Eigen::Index c = 0; c < n; ++c)
+    for (std::int64_t e = outer[static_cast<std::size_t>(c)]; e < outer[static_cast<std::size_t>(c) + 1]; ++e)
+      entries.emplace_back(static_cast<int>(inner[static_cast<std::size_t>(e)]), static_cast<int>(c),
+                           values[static_cast<std::size_t>(e)]);
+  jacobian_ = Eigen::SparseMatrix<double>(n, n);
+  jacobian_.setFromTriplets(entries.begin(), entries.end());
+  jacobian_.makeCompressed();
+  lu_.analyzePattern(jacobian_);
+  lu_.factorize(jacobian_);
+  if (lu_.info() != Eigen::Success)
+    throw core::RunFailure("multigrid: the checkpoint's coarsest-level Jacobian does not factorise again");
+}
+
 void CoarseSolver::residual_vector(int level, Eigen::VectorXd& out) {
   solver_.residual(level);
   out.resize(static_cast<Eigen::Index>(unknowns_.size()));
@@ -110,11 +166,11 @@ void CoarseSolver::factorise(int level, const Eigen::VectorXd& r0) {
       }
   }
   const auto n = static_cast<Eigen::Index>(unknowns_.size());
-  Eigen::SparseMatrix<double> jacobian(n, n);
-  jacobian.setFromTriplets(entries.begin(), entries.end());
-  jacobian.makeCompressed();
-  lu_.analyzePattern(jacobian);
-  lu_.factorize(jacobian);
+  jacobian_ = Eigen::SparseMatrix<double>(n, n);
+  jacobian_.setFromTriplets(entries.begin(), entries.end());
+  jacobian_.makeCompressed();
+  lu_.analyzePattern(jacobian_);
+  lu_.factorize(jacobian_);
   if (lu_.info() != Eigen::Success)
     throw core::RunFailure(fmt::format("multigrid: the coarsest level's Jacobian ({} unknowns) is singular: {}",
                                        unknowns_.size(), lu_.lastErrorMessage()));

@@ -6,6 +6,8 @@
 // Eigen's SparseLU. The factorisation is kept and reused (a chord iteration) while it still
 // converges fast; the problem is tiny, so every solve ends at round-off.
 #include <Eigen/SparseLU>
+
+#include "bhnsid/core/checkpoint.hpp"
 #include <cstddef>
 #include <vector>
 
@@ -21,6 +23,10 @@ class CoarseSolver {
   /// (an outer iteration's next solve): it is a chord Jacobian, rebuilt when it stops converging.
   void reset() { level_ = -1; }
   void solve(int level);
+  /// The index of the unknowns and the Jacobian the chord iteration reuses; restore factorises it
+  /// again (SparseLU of the same matrix gives the same factors, so the next solve is unchanged).
+  void save(core::CheckpointWriter& out) const;
+  void restore(const core::CheckpointReader& in);
 
  private:
   struct Unknown {
@@ -40,6 +46,7 @@ class CoarseSolver {
   std::vector<Unknown> unknowns_;
   std::vector<std::ptrdiff_t> row_of_;  // per (slot, comp, point) -> row, -1 if held
   std::vector<std::size_t> slot_offset_;
+  Eigen::SparseMatrix<double> jacobian_;  // what lu_ factorised, kept for a checkpoint
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
   bool factorised_ = false;
 };

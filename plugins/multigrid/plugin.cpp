@@ -138,16 +138,33 @@ void declare(core::PluginBuilder& b) {
   b.integer("stall_cycles").doc("stalled cycles in a row that end the solve as failed").default_value(std::int64_t{3}).at_least(1);
   b.real("divergence_factor").doc("failed when a residual grows to this multiple of the larger of its start value and |tau|").default_value(1e4).greater_than(1);
 
-  b.schedule(Bin::solve, "solve", [state](Context& ctx) {
-     if (!state->solver) {
-       auto& grid = ctx.services().get<Grid>("grid");
-       auto equations = ctx.services().all<EllipticEquation>();
-       state->solver = std::make_unique<FasSolver>(grid, equations, settings_from(ctx.params()), ctx.log());
-       std::string names;
-       for (const Slot& s : state->solver->slots()) names += (names.empty() ? "" : ", ") + s.name;
-       ctx.log().info("solving {} equation(s) together: {}; {} of the grid's {} levels", equations.size(), names,
-                      state->solver->levels(), grid.num_levels());
-     }
+  // Made at the first solve, when every equation has been published; a resume makes it earlier.
+  const auto make_solver = [state](Context& ctx) {
+    if (state->solver) return;
+    auto& grid = ctx.services().get<Grid>("grid");
+    auto equations = ctx.services().all<EllipticEquation>();
+    state->solver = std::make_unique<FasSolver>(grid, equations, settings_from(ctx.params()), ctx.log());
+    std::string names;
+    for (const Slot& s : state->solver->slots()) names += (names.empty() ? "" : ", ") + s.name;
+    ctx.log().info("solving {} equation(s) together: {}; {} of the grid's {} levels", equations.size(), names,
+                   state->solver->levels(), grid.num_levels());
+  };
+
+  b.checkpoint(
+      [state](Context&, core::CheckpointWriter& out) {
+        out.put_integer("total_cycles", state->total_cycles);
+        out.put_integer("has_solver", state->solver ? 1 : 0);
+        if (state->solver) state->solver->save(out);
+      },
+      [state, make_solver](Context& ctx, const core::CheckpointReader& in) {
+        state->total_cycles = static_cast<int>(in.integer("total_cycles"));
+        if (in.integer("has_solver") == 0) return;
+        make_solver(ctx);
+        state->solver->restore(in);
+      });
+
+  b.schedule(Bin::solve, "solve", [state, make_solver](Context& ctx) {
+     make_solver(ctx);
      // From the second iteration the start is kept, so that RETREAT can undo a failed solve.
      if (ctx.iteration() > 1 && ctx.max_retreats() > 0) state->solver->keep_start();
      // last_report() also holds the history of a failed solve, for OUTPUT.

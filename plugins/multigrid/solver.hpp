@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bhnsid/core/checkpoint.hpp"
 #include "bhnsid/core/log.hpp"
 #include "bhnsid/interfaces/elliptic.hpp"
 #include "bhnsid/interfaces/grid.hpp"
@@ -95,6 +96,10 @@ class FasSolver {
   void keep_start();
   /// Puts back what keep_start() copied; false when nothing was kept.
   bool restore_start();
+  /// What the next solve starts from beyond the fields (solver_checkpoint.cpp): whether they are
+  /// warm, the truncation-error estimates, the coarsest level's chord Jacobian.
+  void save(core::CheckpointWriter& out) const;
+  void restore(const core::CheckpointReader& in);
   /// The history of the last solve, also after it failed.
   const SolveReport& last_report() const { return report_; }
 

@@ -146,6 +146,9 @@ void declare(core::PluginBuilder& b) {
       .doc("check chi, eta, ahat; register beta (and the excision mask); publish the equation and the export of betax, "
            "betay, betaz");
 
+  b.checkpoint([state](Context&, core::CheckpointWriter& out) { state->equation->save(out); },
+               [state](Context&, const core::CheckpointReader& in) { state->equation->restore(in); });
+
   b.schedule(Bin::solve, "excision", [state](Context& ctx) {
      const ExcisionReport r = state->equation->update_puncture();
      if (r.cube.side == 0) return;  // no puncture

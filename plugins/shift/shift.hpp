@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "bhnsid/core/checkpoint.hpp"
 #include "bhnsid/interfaces/elliptic.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
@@ -59,6 +60,11 @@ class ShiftEquation final : public EllipticEquation {
   /// became invalid (the cube reaching the boundary, Mhat <= 0, |v| >= 1). Without a puncture it
   /// does nothing.
   ExcisionReport update_puncture();
+  /// The puncture the mask was last built for and the boxes of its held points (the mask itself is
+  /// the grid's, saved there), so that a resumed run neither logs a move that did not happen nor
+  /// loses the held region of its output (shift_checkpoint.cpp).
+  void save(core::CheckpointWriter& out) const;
+  void restore(const core::CheckpointReader& in);
   /// The cube the excision mask was last built for (hatted), none before the first build or
   /// without a puncture.
   std::optional<Cube> held_cube() const {

@@ -111,17 +111,20 @@ FrozenProfileSolution Family::frozen_profile(double rho_max, double rhat_star, d
   auto it = frozen_.find(key);
   if (it == frozen_.end()) {
     if (frozen_.size() >= 8) frozen_.erase(frozen_.begin());
-    // The source is interpolated from the profile: 2048 steps put that error near 1e-12 (256: 1e-10);
-    // the tighter tolerance keeps the profile consistent to ~1e-11 across the kinks of a piecewise
-    // EOS, where 1e-12 leaves ~1e-9 (SLy). A few ms, once per model.
-    Settings dense = settings_;
-    dense.min_steps = std::max(dense.min_steps, 2048);
-    dense.tolerance = std::min(dense.tolerance, 1e-14);
-    const TovStar frozen = solve_star(eos_, rho_max, dense);
-    auto model = std::make_unique<FrozenProfileModel>(eos_, frozen, rhat_star, frozen_settings_);
-    it = frozen_.emplace(key, std::move(model)).first;
+    it = frozen_.emplace(key, make_frozen(rho_max, rhat_star)).first;
   }
   return it->second->solve(sigma);
+}
+
+std::unique_ptr<FrozenProfileModel> Family::make_frozen(double rho_max, double rhat_star) const {
+  // The source is interpolated from the profile: 2048 steps put that error near 1e-12 (256: 1e-10);
+  // the tighter tolerance keeps the profile consistent to ~1e-11 across the kinks of a piecewise
+  // EOS, where 1e-12 leaves ~1e-9 (SLy). A few ms, once per model.
+  Settings dense = settings_;
+  dense.min_steps = std::max(dense.min_steps, 2048);
+  dense.tolerance = std::min(dense.tolerance, 1e-14);
+  const TovStar frozen = solve_star(eos_, rho_max, dense);
+  return std::make_unique<FrozenProfileModel>(eos_, frozen, rhat_star, frozen_settings_);
 }
 
 }  // namespace bhnsid::tov

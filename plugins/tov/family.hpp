@@ -33,11 +33,16 @@ class Family final : public TovFamily {
   TovStar maximum_rest_mass_star() const override;
   FrozenProfileSolution frozen_profile(double rho_max, double rhat_star, double sigma) const override;
 
+  /// The frozen-profile models a run has used, with their continuation caches.
+  void save(core::CheckpointWriter& out) const;
+  void restore(const core::CheckpointReader& in);
+
   /// The stable-branch central density of the star of rest mass M0.
   double central_density_from_rest_mass(double rest_mass) const;
 
  private:
   double maximize(bool rest_mass) const;  // the central density of the maximum
+  std::unique_ptr<FrozenProfileModel> make_frozen(double rho_max, double rhat_star) const;
 
   const Eos& eos_;
   Settings settings_;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "bhnsid/core/checkpoint.hpp"
 #include "bhnsid/interfaces/eos.hpp"
 #include "bhnsid/interfaces/tov_family.hpp"
 
@@ -31,6 +32,12 @@ class FrozenProfileModel {
   /// TOV star at sigma_tov). Not thread safe: the caller serializes. Throws core::RunFailure above
   /// the fold or when the continuation fails.
   FrozenProfileSolution solve(double sigma);
+
+  /// The continuation's known solutions (the next solve starts from the nearest, so they shape
+  /// its last bits) and the fold bounds, under entry names starting with `prefix`
+  /// (frozen_checkpoint.cpp).
+  void save(core::CheckpointWriter& out, const std::string& prefix) const;
+  void restore(const core::CheckpointReader& in, const std::string& prefix);
 
   double sigma_tov() const { return sigma_tov_; }
   /// The largest sigma at which a solution is known, when a continuation upwards has hit the fold.

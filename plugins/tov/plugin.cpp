@@ -122,6 +122,9 @@ void declare(core::PluginBuilder& b) {
      ctx.log().info("TOV family of EOS {}", eos.describe());
    }).doc("publish the TovFamily of the EOS under tov_family");
 
+  b.checkpoint([state](Context&, core::CheckpointWriter& out) { state->family->save(out); },
+               [state](Context&, const core::CheckpointReader& in) { state->family->restore(in); });
+
   b.schedule(Bin::analysis, "star", [state](Context& ctx) {
      const auto& p = ctx.params();
      if (p.real("central_density") > 0) report_star(ctx, *state);

@@ -155,3 +155,27 @@ TEST_CASE("core.run.plugin_path_from_environment", "[core][run]") {
   CHECK(r.exit_code == 0);
   CHECK(run_bhnsid({"check", parfile.string()}).exit_code == 2);
 }
+
+TEST_CASE("core.run.unknown_command_runs_the_tool_beside_the_executable", "[core][cli]") {
+  // git-style: `bhnsid NAME ARGS` runs bhnsid-NAME from the executable's folder, arguments and
+  // exit code passed through; a built-in command always wins, and without such a tool the name is
+  // an unknown command.
+  TempDir dir;
+  const auto bin = dir.path() / "bin";
+  std::filesystem::create_directories(bin);
+  std::filesystem::copy_file(BHNSID_EXE, bin / "bhnsid");
+  const auto tool = dir.write("bin/bhnsid-hello", "#!/bin/sh\necho \"hello $*\"\nexit 7\n");
+  std::filesystem::permissions(tool, std::filesystem::perms::owner_all);
+  dir.write("bin/bhnsid-run", "#!/bin/sh\necho impostor\n");
+  std::filesystem::permissions(bin / "bhnsid-run", std::filesystem::perms::owner_all);
+
+  const ProcessResult hello = run_program(bin / "bhnsid", {"hello", "a b", "c"});
+  CHECK(hello.exit_code == 7);
+  CHECK(hello.out == "hello a b c\n");
+  const ProcessResult run = run_program(bin / "bhnsid", {"run", "--help"});
+  CHECK(run.exit_code == 0);
+  CHECK_THAT(run.out, Contains("--resume"));
+  const ProcessResult unknown = run_program(bin / "bhnsid", {"goodbye"});
+  CHECK(unknown.exit_code == 2);
+  CHECK_THAT(unknown.err, Contains("goodbye"));
+}

@@ -26,8 +26,8 @@ double now_seconds() {
 }
 
 // In the child: stdout and stderr, the working directory, the file-size limit, then exec.
-[[noreturn]] void exec_child(const std::vector<std::string>& args, const fs::path& out_file, const fs::path& err_file,
-                             const fs::path& cwd, long file_size_limit, Stdout mode) {
+[[noreturn]] void exec_child(const fs::path& program, const std::vector<std::string>& args, const fs::path& out_file,
+                             const fs::path& err_file, const fs::path& cwd, long file_size_limit, Stdout mode) {
   int out = -1;
   if (mode == Stdout::closed_pipe) {
     int fds[2];
@@ -48,7 +48,7 @@ double now_seconds() {
   // The test runner's own signal dispositions must not leak into the child.
   ::signal(SIGPIPE, SIG_DFL);
   std::vector<char*> argv;
-  std::string exe = BHNSID_EXE;
+  std::string exe = program.string();
   argv.push_back(exe.data());
   std::vector<std::string> copies = args;
   for (auto& a : copies) argv.push_back(a.data());
@@ -70,12 +70,17 @@ ProcessResult collect(int status, const rusage& usage, const fs::path& out_file,
 }  // namespace
 
 ProcessResult run_bhnsid(const std::vector<std::string>& args, const fs::path& cwd, long file_size_limit, Stdout mode) {
+  return run_program(BHNSID_EXE, args, cwd, file_size_limit, mode);
+}
+
+ProcessResult run_program(const fs::path& program, const std::vector<std::string>& args, const fs::path& cwd,
+                          long file_size_limit, Stdout mode) {
   TempDir capture;
   const fs::path out_file = capture.path() / "out", err_file = capture.path() / "err";
   const double start = now_seconds();
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error("fork failed");
-  if (pid == 0) exec_child(args, out_file, err_file, cwd, file_size_limit, mode);
+  if (pid == 0) exec_child(program, args, out_file, err_file, cwd, file_size_limit, mode);
   int status = 0;
   rusage usage{};
   ::wait4(pid, &status, 0, &usage);
@@ -91,7 +96,7 @@ Background::Background(const std::vector<std::string>& args, const fs::path& cwd
   start_ = now_seconds();
   pid_ = ::fork();
   if (pid_ < 0) throw std::runtime_error("fork failed");
-  if (pid_ == 0) exec_child(args, capture_ / "out", capture_ / "err", cwd, 0, Stdout::captured);
+  if (pid_ == 0) exec_child(BHNSID_EXE, args, capture_ / "out", capture_ / "err", cwd, 0, Stdout::captured);
 }
 
 Background::~Background() {

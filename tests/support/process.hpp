@@ -43,6 +43,10 @@ bool wait_for_text(const std::filesystem::path& path, const std::string& text, d
 ProcessResult run_bhnsid(const std::vector<std::string>& args, const std::filesystem::path& cwd = {},
                          long file_size_limit = 0, Stdout out = Stdout::captured);
 
+/// The same for another executable (a copy of bhnsid elsewhere, a tool beside it).
+ProcessResult run_program(const std::filesystem::path& program, const std::vector<std::string>& args,
+                          const std::filesystem::path& cwd = {}, long file_size_limit = 0, Stdout out = Stdout::captured);
+
 /// A fresh empty directory under the system temp folder, removed when the object goes.
 class TempDir {
  public:

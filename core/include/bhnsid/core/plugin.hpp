@@ -10,12 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "bhnsid/core/checkpoint.hpp"
 #include "bhnsid/core/memory.hpp"
 #include "bhnsid/core/param_spec.hpp"
 #include "bhnsid/core/schedule.hpp"
 #include "bhnsid/core/variables.hpp"
 
-#define BHNSID_ABI_VERSION 1u
+#define BHNSID_ABI_VERSION 2u  // 2: PluginDecl gained the checkpoint functions
 #define BHNSID_EXPORT __attribute__((visibility("default")))
 
 namespace bhnsid::core {
@@ -29,6 +30,8 @@ struct PluginDecl {
   std::vector<VariableSpec> variables;
   std::vector<ScheduleEntry> schedule;
   std::vector<MemoryEstimator> memory;
+  CheckpointSaveFn checkpoint_save;  ///< empty: the plugin keeps no state across loop iterations
+  CheckpointRestoreFn checkpoint_restore;
 
   const ParamSpec* find_param(const std::string& key) const;
 };
@@ -95,6 +98,11 @@ class PluginBuilder {
   /// published there, such as a grid's layout, can be read). `derived` runs after every plugin's
   /// `own` stage and sees its counts.
   void memory(MemoryFn fn, MemoryStage stage = MemoryStage::own);
+
+  /// The state this plugin carries from one loop iteration to the next (core/checkpoint.hpp):
+  /// `save` runs after every iteration, `restore` on --resume after INITIAL, before the loop goes
+  /// on. A plugin without one is taken to carry none.
+  void checkpoint(CheckpointSaveFn save, CheckpointRestoreFn restore);
 
  private:
   ParamHandle add_param(std::string name, ParamType type);

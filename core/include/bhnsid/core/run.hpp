@@ -13,6 +13,7 @@ namespace bhnsid::core {
 struct RunOptions {
   std::filesystem::path run_directory;
   bool force = false;
+  bool resume = false;  ///< continue the run in run_directory from its newest checkpoint (bhnsid run --resume)
   std::string command_line;
   bool verbose = false;  ///< detail lines (per multigrid cycle, per plugin step) on the terminal too
   std::vector<std::filesystem::path> protect;  ///< --force never replaces a directory holding one (the parameter file)

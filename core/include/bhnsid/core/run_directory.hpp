@@ -20,6 +20,10 @@ class RunDirectory {
   /// in the marker. A directory holding one of `protect` (the parameter file) is never replaced. Throws
   /// InputError naming the directory and the reason; on failure nothing is left that was not there.
   RunDirectory(std::filesystem::path dir, bool force, std::string kind, const std::vector<std::filesystem::path>& protect);
+  /// Reopens the directory of an earlier run of `kind` to continue it (bhnsid run --resume):
+  /// locks it and keeps everything in it; abandon() then removes nothing.
+  struct ReopenTag {};
+  RunDirectory(std::filesystem::path dir, std::string kind, ReopenTag);
   ~RunDirectory();
   RunDirectory(const RunDirectory&) = delete;
   RunDirectory& operator=(const RunDirectory&) = delete;
@@ -28,11 +32,15 @@ class RunDirectory {
   /// Records, before it is written, that the program writes `name` (a file or sub-directory
   /// directly inside), so that a later --force may replace it.
   void record(const std::string& name);
+  /// Records a sub-directory every entry of which the program writes (the checkpoints), so that a
+  /// later --force removes it whole without looking for a marker inside.
+  void record_folder(const std::string& name);
   /// Removes what was recorded, the marker and, when this object created them, the directory and
   /// the folders above it (when empty): used when a run fails before anything has run.
   void abandon();
 
  private:
+  void lock();
   void write_marker();
   void remove_created_parents();
   std::filesystem::path dir_;
@@ -40,8 +48,10 @@ class RunDirectory {
   std::string started_;
   int fd_ = -1;
   bool created_ = false;
+  bool reopened_ = false;
   std::filesystem::path first_created_parent_;  ///< the topmost folder above dir_ this object created
   std::vector<std::string> files_;
+  std::vector<std::string> folders_;
 };
 
 }  // namespace bhnsid::core

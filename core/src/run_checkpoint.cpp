@@ -1,0 +1,238 @@
+#include "run_checkpoint.hpp"
+
+#include <dlfcn.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "bhnsid/core/build_info.hpp"
+#include "bhnsid/core/errors.hpp"
+
+namespace bhnsid::core {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::uint64_t hash_file(std::uint64_t hash, const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot read it to identify the build: {}", file.string(), "unreadable"));
+  std::vector<char> buffer(1 << 20);
+  while (in) {
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    hash = fnv1a(hash, buffer.data(), static_cast<std::size_t>(in.gcount()));
+  }
+  return hash;
+}
+
+// Parameters that only steer how far the loop goes and how often it is saved: a resume may change
+// them (give a run that ran out of iterations more), nothing else.
+bool may_differ(const std::string& key) { return key == "run.max_iterations" || key == "run.checkpoint_every"; }
+
+std::map<std::string, std::string> fingerprint_lines(const std::string& text) {
+  std::map<std::string, std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    const std::size_t eq = line.find(" = ");
+    if (eq != std::string::npos) out[line.substr(0, eq)] = line.substr(eq + 3);
+  }
+  return out;
+}
+
+std::string join(const std::vector<std::string>& words) {
+  std::string out;
+  for (const auto& w : words) out += w + "\n";
+  return out;
+}
+
+std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+int threads_now() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+}  // namespace
+
+std::string build_id(const Configuration& config) {
+  std::uint64_t hash = fnv_offset;
+  const std::string facts = fmt::format("{}|{}|{}|{}", build_version(), build_git_revision(), build_type(), build_compiler());
+  hash = fnv1a(hash, facts.data(), facts.size());
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) hash = hash_file(hash, exe);
+  Dl_info info{};
+  if (::dladdr(reinterpret_cast<void*>(&fnv1a), &info) != 0 && info.dli_fname) hash = hash_file(hash, info.dli_fname);
+  for (const auto& plugin : config.plugins) hash = hash_file(hash, plugin->file);
+  return fmt::format("{:016x}", hash);
+}
+
+std::string parameter_fingerprint(const Configuration& config) {
+  std::string out = "plugins = ";
+  for (const auto& p : config.plugins) out += p->decl.name + " ";
+  out += "\n";
+  for (const auto& [section, values] : config.params)
+    for (const auto& [key, value] : values.values()) out += fmt::format("{}.{} = {}\n", section, key, format_value(value));
+  return out;
+}
+
+void save_checkpoint(RunState& state, const ContextOf& context, bool converged, const std::string& build) {
+  const fs::path dir = state.run_dir / checkpoint_dir_name;
+  state.directory->record_folder(checkpoint_dir_name);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(fmt::format("{}: cannot create the checkpoint folder: {}", dir.string(), ec.message()));
+  const fs::path final_path = checkpoint_path(dir, state.iteration);
+  fs::path partial = final_path;
+  partial += ".partial";
+  {
+    CheckpointFileWriter w(partial);
+    w.section(core_section);
+    w.put_string("build_id", build);
+    w.put_string("parameters", parameter_fingerprint(state.config));
+    w.put_integer("iteration", state.iteration);
+    w.put_integer("converged", converged ? 1 : 0);
+    w.put_integer("threads", threads_now());
+    w.put_string("history_columns", join(state.history_columns));
+    // One row per iteration in column order; a cell a plugin did not set that iteration is marked
+    // absent in the mask (it is written empty in scalars.tsv, which NaN would not be).
+    std::vector<double> cells;
+    std::string present;
+    for (const auto& row : state.history)
+      for (const auto& c : state.history_columns) {
+        auto it = row.find(c);
+        cells.push_back(it == row.end() ? 0.0 : it->second);
+        present.push_back(it == row.end() ? '0' : '1');
+      }
+    w.put("history", cells);
+    w.put_string("history_present", present);
+    std::vector<std::string> names;
+    std::vector<double> values;
+    for (const auto& [name, value] : state.scalars) {
+      names.push_back(name);
+      values.push_back(value);
+    }
+    w.put_string("scalar_names", join(names));
+    w.put("scalar_values", values);
+    for (const auto* decl : state.config.decls)
+      if (decl->checkpoint_save) {
+        w.section(decl->name);
+        decl->checkpoint_save(context(decl->name), w);
+      }
+    w.finish(final_path);
+  }
+  const std::vector<int> kept = checkpoint_iterations(dir);
+  for (std::size_t i = 2; i < kept.size(); ++i) fs::remove(checkpoint_path(dir, kept[i]), ec);
+}
+
+ResumePoint find_resume_point(const fs::path& run_dir, const Configuration& config, const std::string& build,
+                              const Log& log) {
+  const fs::path dir = run_dir / checkpoint_dir_name;
+  std::error_code ec;
+  // A write a kill interrupted: never a checkpoint, and ours to remove.
+  for (auto it = fs::directory_iterator(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind("checkpoint.", 0) == 0 && name.size() > 8 && name.compare(name.size() - 8, 8, ".partial") == 0) {
+      log.warn("{}: an unfinished checkpoint write (the run was killed while saving); removed", it->path().string());
+      fs::remove(it->path(), ec);
+    }
+  }
+  const std::vector<int> iterations = checkpoint_iterations(dir);
+  if (iterations.empty())
+    throw InputError(fmt::format("{}: no checkpoint to resume from (the run stopped before its first loop iteration "
+                                 "ended, or run.checkpoint_every = 0); start it again with --force",
+                                 dir.string()));
+  std::string refused;
+  for (int iteration : iterations) {
+    ResumePoint point;
+    try {
+      point.file = std::make_unique<CheckpointFileReader>(checkpoint_path(dir, iteration));
+    } catch (const InputError& e) {
+      log.warn("{}; trying an older checkpoint", e.what());
+      refused += fmt::format("\n  {}", e.what());
+      continue;
+    }
+    CheckpointFileReader& f = *point.file;
+    f.section(core_section);
+    const std::string theirs = f.string("build_id");
+    if (theirs != build)
+      throw InputError(fmt::format("{}: written by another build of bhnsid (build id {}, this one {}: the executable, the "
+                                   "core library or a plugin changed); resume with the build that wrote it, or start "
+                                   "again with --force",
+                                   f.path().string(), theirs, build));
+    const auto was = fingerprint_lines(f.string("parameters"));
+    const auto now = fingerprint_lines(parameter_fingerprint(config));
+    for (const auto& [key, value] : now) {
+      if (may_differ(key)) continue;
+      auto it = was.find(key);
+      if (it == was.end() || it->second != value)
+        throw InputError(fmt::format("{}: {}: the checkpoint was written with {}, this run has {} = {}; resume with the "
+                                     "parameters of the run (only run.max_iterations and run.checkpoint_every may "
+                                     "change) or start again with --force",
+                                     config.file.source, key, it == was.end() ? "no such parameter" : key + " = " + it->second,
+                                     key, value));
+    }
+    for (const auto& [key, value] : was)
+      if (!may_differ(key) && !now.count(key))
+        throw InputError(fmt::format("{}: the checkpoint {} was written with {} = {}, which this run does not have (another "
+                                     "plugin set); resume with the parameters of the run or start again with --force",
+                                     config.file.source, f.path().string(), key, value));
+    const std::int64_t threads = f.integer("threads");
+    if (threads != threads_now())
+      log.warn("{}: written with {} OpenMP threads, this run has {}: the result will agree to round-off, not to the bit "
+               "(reductions sum in another order); set run.threads = {} for an identical result",
+               f.path().string(), threads, threads_now(), threads);
+    point.iteration = static_cast<int>(f.integer("iteration"));
+    point.converged = f.integer("converged") != 0;
+    return point;
+  }
+  throw InputError(fmt::format("{}: no checkpoint there reads back whole:{}; start the run again with --force",
+                               dir.string(), refused));
+}
+
+void restore_checkpoint(RunState& state, const ContextOf& context, CheckpointFileReader& f) {
+  f.section(core_section);
+  state.iteration = static_cast<int>(f.integer("iteration"));
+  state.history_columns = split(f.string("history_columns"));
+  const std::vector<double> cells = f.reals("history");
+  const std::string present = f.string("history_present");
+  const std::size_t columns = state.history_columns.size();
+  if (present.size() != cells.size() || (columns == 0 ? !cells.empty() : cells.size() % columns != 0))
+    throw InputError(fmt::format("{}: the loop history is malformed", f.path().string()));
+  state.history.clear();
+  for (std::size_t r = 0; columns > 0 && r < cells.size() / columns; ++r) {
+    auto& row = state.history.emplace_back();
+    for (std::size_t c = 0; c < columns; ++c)
+      if (present[r * columns + c] == '1') row[state.history_columns[c]] = cells[r * columns + c];
+  }
+  const std::vector<std::string> names = split(f.string("scalar_names"));
+  const std::vector<double> values = f.reals("scalar_values");
+  if (names.size() != values.size()) throw InputError(fmt::format("{}: the scalars are malformed", f.path().string()));
+  state.scalars.clear();
+  for (std::size_t i = 0; i < names.size(); ++i) state.scalars.emplace_back(names[i], values[i]);
+  for (const auto* decl : state.config.decls) {
+    const bool saved = f.has_section(decl->name);
+    if (saved != static_cast<bool>(decl->checkpoint_restore))
+      throw InputError(fmt::format("{}: plugin {} {} a checkpoint section, but {}", f.path().string(), decl->name,
+                                   saved ? "has" : "has no", saved ? "restores none" : "needs one"));
+    if (!saved) continue;
+    f.section(decl->name);
+    decl->checkpoint_restore(context(decl->name), f);
+  }
+}
+
+}  // namespace bhnsid::core

@@ -1,0 +1,49 @@
+#pragma once
+// The run's checkpoints (docs/user-guide.md, "Resuming a run"): the core's state and every
+// plugin's checkpoint section, after each loop iteration, in RUN_DIR/checkpoints; and the checks
+// that a checkpoint belongs to this build and these parameters before a resume touches anything.
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "bhnsid/core/configuration.hpp"
+#include "bhnsid/core/context.hpp"
+#include "bhnsid/core/log.hpp"
+#include "checkpoint_file.hpp"
+#include "run_state.hpp"
+
+namespace bhnsid::core {
+
+inline constexpr const char* checkpoint_dir_name = "checkpoints";
+/// The core's own section: no plugin can bear the name (names are identifiers).
+inline constexpr const char* core_section = "(core)";
+
+/// A hash of what computes: the executable, the core library and every loaded plugin's file.
+std::string build_id(const Configuration& config);
+
+/// Every resolved parameter as "section.key = value" lines (and the plugin list): what must match
+/// for a checkpoint to continue this run. run.max_iterations and run.checkpoint_every may differ.
+std::string parameter_fingerprint(const Configuration& config);
+
+using ContextOf = std::function<Context&(const std::string& plugin)>;
+
+/// Writes checkpoints/checkpoint.NNNNNN of state.iteration (temporary, fsync, rename) and removes
+/// all but the newest two; InputError when the disk refuses.
+void save_checkpoint(RunState& state, const ContextOf& context, bool converged, const std::string& build);
+
+/// The newest checkpoint of `run_dir` that reads back whole, checked against this build and these
+/// parameters (damaged ones are skipped with a warning, leftover .partial files removed); InputError
+/// naming the file and the difference otherwise. Nothing of the run is touched.
+struct ResumePoint {
+  std::unique_ptr<CheckpointFileReader> file;
+  int iteration = 0;
+  bool converged = false;
+};
+ResumePoint find_resume_point(const std::filesystem::path& run_dir, const Configuration& config, const std::string& build,
+                              const Log& log);
+
+/// Restores the core's loop state (iteration, history, scalars) and every plugin's section.
+void restore_checkpoint(RunState& state, const ContextOf& context, CheckpointFileReader& file);
+
+}  // namespace bhnsid::core

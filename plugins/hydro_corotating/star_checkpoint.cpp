@@ -1,0 +1,60 @@
+#include "bhnsid/core/errors.hpp"
+#include "star.hpp"
+
+namespace bhnsid::hydro_corotating {
+
+namespace {
+constexpr std::size_t constants_size = 4, report_size = 2 + 2 * constants_size + 6;
+
+void put_constants(std::vector<double>& out, const StarConstants& c) {
+  out.insert(out.end(), {c.sigma, c.bernoulli, c.omega_hat, c.x_c});
+}
+StarConstants constants_at(const double* v) { return StarConstants{v[0], v[1], v[2], v[3]}; }
+}  // namespace
+
+void Star::save(core::CheckpointWriter& out) const {
+  std::vector<double> now;
+  put_constants(now, fluid_->constants);
+  now.insert(now.end(), {fluid_->converged ? 1.0 : 0.0, m0_change_, undone_rest_mass_});
+  out.put("state", now);
+  // Every report as its numbers (iteration, matter_points and converged are small integers, exact
+  // in a double).
+  std::vector<double> reports;
+  for (const StepReport& r : history_) {
+    reports.insert(reports.end(), {static_cast<double>(r.iteration), r.change});
+    put_constants(reports, r.before);
+    put_constants(reports, r.after);
+    reports.insert(reports.end(), {r.converged ? 1.0 : 0.0, static_cast<double>(r.matter_points), r.fraction,
+                                   r.rest_mass_before, r.m0_change_before, 0.0});
+  }
+  out.put("history", reports);
+}
+
+void Star::restore(const core::CheckpointReader& in) {
+  const std::vector<double> now = in.reals("state");
+  const std::vector<double> reports = in.reals("history");
+  if (now.size() != constants_size + 3 || reports.size() % report_size != 0)
+    throw core::InputError("hydro_corotating: the checkpoint's star state is malformed");
+  fluid_->constants = constants_at(now.data());
+  fluid_->converged = now[4] != 0;
+  m0_change_ = now[5];
+  undone_rest_mass_ = now[6];
+  history_.clear();
+  for (std::size_t at = 0; at < reports.size(); at += report_size) {
+    const double* v = reports.data() + at;
+    StepReport r;
+    r.iteration = static_cast<int>(v[0]);
+    r.change = v[1];
+    r.before = constants_at(v + 2);
+    r.after = constants_at(v + 2 + constants_size);
+    const double* tail = v + 2 + 2 * constants_size;
+    r.converged = tail[0] != 0;
+    r.matter_points = static_cast<int>(tail[1]);
+    r.fraction = tail[2];
+    r.rest_mass_before = tail[3];
+    r.m0_change_before = tail[4];
+    history_.push_back(r);
+  }
+}
+
+}  // namespace bhnsid::hydro_corotating
