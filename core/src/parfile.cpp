@@ -111,10 +111,16 @@ const PluginDecl& core_declaration() {
         .at_least(0)
         .at_most(30);
     b.integer("checkpoint_every")
-        .doc("save the run's state to RUN_DIR/checkpoints every this many loop iterations (and at convergence), the "
-             "newest two kept, for bhnsid run --resume; 0: never")
+        .doc("save the run's state to RUN_DIR/checkpoints at most every this many loop iterations (see "
+             "checkpoint_overhead; always at convergence), the newest two kept, for bhnsid run --resume; 0: never")
         .default_value(std::int64_t{1})
         .at_least(0);
+    b.real("checkpoint_overhead")
+        .doc("a checkpoint is skipped while the last one took more than this fraction of the time since it ended, so "
+             "that checkpoints cost at most about this fraction of the run (the converged iteration's is always "
+             "written)")
+        .default_value(0.1)
+        .greater_than(0);
     b.integer("threads")
         .doc("OpenMP threads for every kernel; 0 keeps OMP_NUM_THREADS or the machine's default")
         .default_value(std::int64_t{0})

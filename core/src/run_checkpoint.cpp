@@ -33,7 +33,9 @@ std::uint64_t hash_file(std::uint64_t hash, const fs::path& file) {
 
 // Parameters that only steer how far the loop goes and how often it is saved: a resume may change
 // them (give a run that ran out of iterations more), nothing else.
-bool may_differ(const std::string& key) { return key == "run.max_iterations" || key == "run.checkpoint_every"; }
+bool may_differ(const std::string& key) {
+  return key == "run.max_iterations" || key == "run.checkpoint_every" || key == "run.checkpoint_overhead";
+}
 
 std::map<std::string, std::string> fingerprint_lines(const std::string& text) {
   std::map<std::string, std::string> out;
@@ -181,8 +183,8 @@ ResumePoint find_resume_point(const fs::path& run_dir, const Configuration& conf
       auto it = was.find(key);
       if (it == was.end() || it->second != value)
         throw InputError(fmt::format("{}: {}: the checkpoint was written with {}, this run has {} = {}; resume with the "
-                                     "parameters of the run (only run.max_iterations and run.checkpoint_every may "
-                                     "change) or start again with --force",
+                                     "parameters of the run (only run.max_iterations and the "
+                                     "checkpoint settings may change) or start again with --force",
                                      config.file.source, key, it == was.end() ? "no such parameter" : key + " = " + it->second,
                                      key, value));
     }

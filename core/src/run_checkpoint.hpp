@@ -23,7 +23,7 @@ inline constexpr const char* core_section = "(core)";
 std::string build_id(const Configuration& config);
 
 /// Every resolved parameter as "section.key = value" lines (and the plugin list): what must match
-/// for a checkpoint to continue this run. run.max_iterations and run.checkpoint_every may differ.
+/// for a checkpoint to continue this run. run.max_iterations and the checkpoint settings may differ.
 std::string parameter_fingerprint(const Configuration& config);
 
 using ContextOf = std::function<Context&(const std::string& plugin)>;

@@ -4,6 +4,7 @@
 // refused resume leaves the earlier run untouched.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -20,7 +21,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* const parfile_text = "plugins: [tp_checkpoint, tp_kill]\nrun:\n  max_iterations: 60\n";
+// Every iteration's checkpoint, however slow the machine (checkpoint_overhead: no time limit).
+const char* const parfile_text =
+    "plugins: [tp_checkpoint, tp_kill]\nrun:\n  max_iterations: 60\n  checkpoint_overhead: 1.0e9\n";
 
 /// Sets BHNSID_TEST_KILL for the children started while it lives.
 struct KillAt {
@@ -258,4 +261,19 @@ TEST_CASE("core.resume.a_converged_run_resumes_straight_to_its_output", "[core][
   CHECK_THAT(read_file(ref.out / "log.txt"), Contains("straight to ANALYSIS"));
   CHECK(history(ref.out) == before);
   CHECK(scalars(ref.out)["steps"].get<double>() > 12);
+}
+
+TEST_CASE("core.resume.checkpoints_wait_while_the_last_one_cost_too_much", "[core][run][resume]") {
+  // With a budget of 1e-9 of the time since, only the first checkpoint (nothing to wait for) and
+  // the converged one (always) are written.
+  TempDir dir;
+  const auto parfile = dir.write("case.yaml", parfile_text);
+  const fs::path out = dir.path() / "out";
+  REQUIRE(run(parfile, out, {"--set", "run.checkpoint_overhead=1e-9"}).exit_code == 0);
+  const int steps = static_cast<int>(scalars(out)["steps"].get<double>());
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(out / "checkpoints")) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  CHECK(names == std::vector<std::string>{fmt_checkpoint(1), fmt_checkpoint(steps)});
+  CHECK_THAT(read_file(out / "log.txt"), Contains("iteration 1: checkpoint written in"));
 }

@@ -45,8 +45,9 @@ fs::path with_kill_plugin(const TempDir& dir, const std::string& parfile) {
 
 ProcessResult run(const fs::path& parfile, const fs::path& out, const std::vector<std::string>& sets,
                   bool resume = false) {
+  // Every iteration's checkpoint, however slow the machine (no time limit on their cost).
   std::vector<std::string> args = {"run", parfile.string(), "--output", out.string(), "--set", "run.threads=1",
-                                   "--plugin-path", test_plugin_dir().string()};
+                                   "--set", "run.checkpoint_overhead=1e9", "--plugin-path", test_plugin_dir().string()};
   for (const auto& s : sets) args.insert(args.end(), {"--set", s});
   if (resume) args.push_back("--resume");
   return run_bhnsid(args);
