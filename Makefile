@@ -3,11 +3,12 @@ BUILD      ?= build
 BUILD_ASAN ?= build-asan
 BUILD_FUZZ ?= build-fuzz
 JOBS       ?= $(shell nproc)
+PREFIX     ?= /usr/local
 FUZZ_SECONDS ?= 30
 
 CMAKE_FLAGS = -G Ninja -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps build run test test-viz test-asan fuzz fuzz-check clean
+.PHONY: all deps build run test test-viz test-asan fuzz fuzz-check clean install
 
 all: build
 
@@ -56,6 +57,12 @@ fuzz-check: deps $(BUILD_FUZZ)/build.ninja
 	mkdir -p $(BUILD_FUZZ)/corpus
 	ASAN_OPTIONS=detect_leaks=1 $(BUILD_FUZZ)/bin/fuzz_parfile -max_total_time=$(FUZZ_SECONDS) -timeout=1 \
 		-rss_limit_mb=2048 $(BUILD_FUZZ)/corpus tests/fuzz/corpus
+
+# The solver (bin/bhnsid, lib/libbhnsid_core.so, lib/bhnsid/ plugins) and the reader (header,
+# library, bhnsid_reader.pc, bhnsid-export, the Python module); the reader alone:
+# cmake --install build --prefix DIR --component reader.
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD_FUZZ)

@@ -33,5 +33,13 @@ function(bhnsid_add_plugin name)
   if(ARG_PLOT)
     configure_file(${CMAKE_CURRENT_SOURCE_DIR}/${ARG_PLOT} ${out}/${name}.plot.py COPYONLY)
   endif()
+  # make install: beside the others in <prefix>/lib/bhnsid, where bin/bhnsid looks (../lib/bhnsid);
+  # INSTALL_RPATH $ORIGIN/.. finds libbhnsid_core in <prefix>/lib. Test-only plugins stay behind.
+  if(NOT ARG_TEST_ONLY)
+    install(TARGETS ${target} LIBRARY DESTINATION lib/bhnsid COMPONENT solver)
+    if(ARG_PLOT)
+      install(FILES ${out}/${name}.plot.py DESTINATION lib/bhnsid COMPONENT solver)
+    endif()
+  endif()
   set_property(GLOBAL APPEND PROPERTY BHNSID_PLUGIN_TARGETS ${target})
 endfunction()
