@@ -12,6 +12,7 @@ packages=(
   catch2                                             # tests
   clang libclang-rt-14-dev libomp-dev                # make fuzz, make fuzz-check (libFuzzer, OpenMP for clang)
   python3 python3-numpy python3-matplotlib python3-h5py  # validation plots, reading data.h5
+  python3-scipy python3-yaml                         # bhnsid sequence: splines, sequence files
 )
 for option in "$@"; do
   case "$option" in

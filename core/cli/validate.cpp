@@ -397,7 +397,12 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
   if (opt.plots) {
     // Debian's interpreter, where matplotlib is installed (scripts/install-deps.sh), before any other on PATH.
     const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-    const std::string cmd = fmt::format("{} '{}' '{}' '{}'", python, BHNSID_PLOT_SCRIPT, (dir / "validate.json").string(), dir.string());
+    // Installed beside the executable (PREFIX/share/bhnsid), else in the source tree it was built from.
+    std::error_code ec;
+    const fs::path installed = fs::read_symlink("/proc/self/exe", ec).parent_path().parent_path() / "share" / "bhnsid" /
+                               "plot_validate.py";
+    const std::string script = !ec && fs::exists(installed) ? installed.string() : std::string(BHNSID_PLOT_SCRIPT);
+    const std::string cmd = fmt::format("{} '{}' '{}' '{}'", python, script, (dir / "validate.json").string(), dir.string());
     std::set<std::string> before;
     for (const auto& e : fs::directory_iterator(dir)) before.insert(e.path().filename().string());
     const int rc = std::system(cmd.c_str());

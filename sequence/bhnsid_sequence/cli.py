@@ -1,0 +1,64 @@
+"""bhnsid sequence FILE.yaml [--jobs N] [--output DIR] [--reduce-only]: every configuration as an
+ordinary run, then the splines, minima, error model, tables and figures (sequence/README.md)."""
+import argparse
+import os
+import shutil
+import sys
+from pathlib import Path
+
+from .pipeline import at_targets, error_bars, minima, point_errors
+from .report import write_all
+from .runs import configurations, read_outcome, run_all
+from .spec import SpecError, read_spec
+
+MARKER = ".bhnsid-sequence"
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(prog="bhnsid sequence", description=__doc__.splitlines()[0])
+    p.add_argument("file", help="sequence file (YAML, a section 'sequence')")
+    p.add_argument("--output", help="sequence directory (default runs/<file stem>)")
+    p.add_argument("--jobs", type=int, default=1, help="runs at once (each with sequence.threads threads)")
+    p.add_argument("--reduce-only", action="store_true", help="only reduce the runs already there")
+    p.add_argument("--bhnsid", help="the bhnsid executable (default: the one beside this tool)")
+    args = p.parse_args(argv)
+    try:
+        spec = read_spec(args.file)
+        if args.jobs < 1:
+            raise SpecError(f"--jobs: expected at least 1, got {args.jobs}")
+    except SpecError as e:
+        print(f"bhnsid: error: {e}", file=sys.stderr)
+        return 2
+    here = Path(sys.argv[0]).resolve().parent
+    bhnsid = args.bhnsid or str(here / "bhnsid")
+    if not (os.path.isfile(bhnsid) and os.access(bhnsid, os.X_OK)):
+        found = shutil.which("bhnsid")
+        if not found:
+            print(f"bhnsid: error: --bhnsid: no bhnsid executable at {bhnsid} or on PATH", file=sys.stderr)
+            return 2
+        bhnsid = found
+    root = Path(args.output) if args.output else Path("runs") / Path(args.file).stem
+    # A folder this tool did not make is never written into (its runs would mix with others').
+    if root.exists() and not (root / MARKER).exists() and any(root.iterdir()):
+        print(f"bhnsid: error: {root}: exists and is not a sequence directory (no {MARKER}); choose another --output",
+              file=sys.stderr)
+        return 2
+    root.mkdir(parents=True, exist_ok=True)
+    (root / MARKER).write_text(f"{Path(args.file).resolve()}\n")
+    if args.reduce_only:
+        outcomes = [read_outcome(c, root / c.relative_dir) for c in configurations(spec)]
+    else:
+        outcomes = run_all(bhnsid, spec, root, args.jobs)
+    table = at_targets(spec, outcomes)
+    found = minima(spec, table)
+    try:
+        errors = error_bars(spec, found)
+        at_points = point_errors(spec, table)
+    except ValueError as e:
+        print(f"bhnsid: error: {spec.file}: sequence.grids: {e}", file=sys.stderr)
+        return 2
+    figs = write_all(spec, outcomes, table, found, errors, at_points, root)
+    converged = sum(o.status == "converged" for o in outcomes)
+    print(f"sequence: {converged} of {len(outcomes)} configurations converged; wrote {root}/sequence.json, "
+          f"table_min_*.md/.csv, failures.md, {', '.join(figs)}")
+    return 0 if converged else 1

@@ -1,0 +1,126 @@
+"""From the runs to the ISCO: per grid and xhat_A, every quantity splined against M0 at the target
+masses; per grid and target, the minima of E_b, E_b' and J along xhat_A with every quantity there;
+over the grids, the error model (physics-notes §6.2-6.3)."""
+import math
+from typing import Dict, List
+
+from .reduce import error_model, parabola_minimum, quadratic_at, spline_at
+from .runs import Outcome
+from .spec import Spec
+
+# Tabulated quantities: summary.json's scalar names (physical units; E_b with the bare mass, as
+# the paper; E_b' with the puncture mass, physics-notes §6.1).
+QUANTITIES = {
+    "E_b": "binding_energy",
+    "E_b_puncture": "binding_energy_puncture",
+    "J_over_M0sq": "j_over_m0sq",
+    "Omega_M0": "omega_m0",
+    "rho_max": "rho_max",
+    "x_a": "x_a",
+    "C_B": "bernoulli_constant",
+    "sigma": "sigma",
+    "P_y_BH": "bh_momentum_y",
+}
+MINIMA = {"E_b": "E_b", "E_b_puncture": "E_b_puncture", "J": "J_over_M0sq"}
+
+
+def _finite(x):
+    return x is not None and isinstance(x, (int, float)) and math.isfinite(x)
+
+
+def at_targets(spec: Spec, outcomes: List[Outcome]) -> Dict:
+    """{grid: {x_a: {target: {quantity: value} or {"reason": ...}}}} and M0_max."""
+    m0_max = None
+    for o in outcomes:
+        s = o.scalars or {}
+        if o.status == "converged" and _finite(s.get("rest_mass")) and _finite(s.get("rest_mass_fraction")):
+            m0_max = s["rest_mass"] / s["rest_mass_fraction"]
+            break
+    out = {}
+    for g, grid in enumerate(spec.grids):
+        per_grid = out.setdefault(grid.name, {})
+        for xa in spec.x_a:
+            runs = [o for o in outcomes if o.config.grid_index == g and o.config.x_a == xa and o.status == "converged"
+                    and all(_finite((o.scalars or {}).get(k)) for k in list(QUANTITIES.values()) + ["rest_mass"])]
+            m0 = [o.scalars["rest_mass"] for o in runs]
+            cell = per_grid.setdefault(f"{xa:.6g}", {})
+            for t in spec.targets:
+                if m0_max is None:
+                    cell[f"{t:g}"] = {"reason": "no converged configuration gives (M0)_max"}
+                    continue
+                entry = {}
+                for name, key in QUANTITIES.items():
+                    r = spline_at(m0, [o.scalars[key] for o in runs], [t * m0_max])[0]
+                    if r.value is None:
+                        entry = {"reason": r.reason}
+                        break
+                    entry[name] = r.value
+                cell[f"{t:g}"] = entry
+    return {"m0_max": m0_max, "grids": out}
+
+
+def minima(spec: Spec, table: Dict) -> Dict:
+    """{grid: {target: {minimum: {...}}}}: along xhat_A, ordered by Omega M0."""
+    out = {}
+    for grid in spec.grids:
+        for t in spec.targets:
+            points = [table["grids"][grid.name][f"{xa:.6g}"][f"{t:g}"] for xa in spec.x_a]
+            points = [p for p in points if "reason" not in p]
+            points.sort(key=lambda p: p["Omega_M0"])
+            res = out.setdefault(grid.name, {}).setdefault(f"{t:g}", {})
+            res["points"] = len(points)
+            x = [p["Omega_M0"] for p in points]
+            for label, quantity in MINIMA.items():
+                m = parabola_minimum(x, [p[quantity] for p in points])
+                if m.x is None:
+                    res[label] = {"reason": m.reason}
+                    continue
+                at = {name: quadratic_at(x, [p[name] for p in points], m.indices, m.x) for name in QUANTITIES}
+                at["Omega_M0"] = m.x
+                at[quantity] = m.y
+                res[label] = at
+    return out
+
+
+def error_bars(spec: Spec, found: Dict) -> Dict:
+    """{target: {minimum: {quantity: {value, error, Q_e, ...} or reason}}} of the finest grid."""
+    out = {}
+    finest = spec.grids[0].name
+    for t in spec.targets:
+        for label in MINIMA:
+            cells = [found[g.name][f"{t:g}"][label] for g in spec.grids]
+            res = out.setdefault(f"{t:g}", {}).setdefault(label, {})
+            if any("reason" in c for c in cells):
+                reasons = [f"{g.name}: {c['reason']}" for g, c in zip(spec.grids, cells) if "reason" in c]
+                res["reason"] = "; ".join(reasons)
+                if "reason" not in found[finest][f"{t:g}"][label]:
+                    res["values"] = found[finest][f"{t:g}"][label]
+                continue
+            for name in QUANTITIES:
+                q = [c[name] for c in cells]
+                entry = {"value": q[0], "per_grid": q}
+                if len(spec.grids) == 3:
+                    e = error_model([g.dx for g in spec.grids], [g.rc for g in spec.grids], q)
+                    entry.update(error=e.error_bar, q_exact=e.q_exact, e_truncation=e.e_truncation, e_boundary=e.e_boundary)
+                else:
+                    entry["error"] = None
+                res[name] = entry
+    return out
+
+
+def point_errors(spec: Spec, table: Dict) -> Dict:
+    """The error bar of every sequence point (per xhat_A and target) for the figures."""
+    out = {}
+    if len(spec.grids) != 3:
+        return out
+    for xa in spec.x_a:
+        for t in spec.targets:
+            cells = [table["grids"][g.name][f"{xa:.6g}"][f"{t:g}"] for g in spec.grids]
+            if any("reason" in c for c in cells):
+                continue
+            errs = {}
+            for name in ("E_b", "J_over_M0sq", "Omega_M0"):
+                e = error_model([g.dx for g in spec.grids], [g.rc for g in spec.grids], [c[name] for c in cells])
+                errs[name] = e.error_bar
+            out.setdefault(f"{t:g}", {})[f"{xa:.6g}"] = errs
+    return out

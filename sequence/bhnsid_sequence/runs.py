@@ -1,0 +1,150 @@
+"""The configurations of a sequence as ordinary run directories, run on a local pool of worker
+processes; a configuration already converged with the same command is skipped, so a killed
+sequence resumes where it stopped."""
+import json
+import os
+import shlex
+import subprocess
+import sys
+import time
+from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Dict, List, Optional
+
+from .spec import Grid, Spec
+
+
+@dataclass(frozen=True)
+class Config:
+    grid_index: int
+    grid: Grid
+    x_a: float
+    rho_max: float
+
+    @property
+    def relative_dir(self) -> Path:
+        return Path(f"grid{self.grid_index}_{self.grid.name}") / f"xa{self.x_a:.6g}" / f"rho{self.rho_max:.6g}"
+
+
+def configurations(spec: Spec) -> List[Config]:
+    return [Config(g, grid, xa, rho) for g, grid in enumerate(spec.grids) for xa in spec.x_a for rho in spec.rho_max]
+
+
+def settings(spec: Spec, c: Config) -> Dict[str, str]:
+    s = dict(spec.overrides)
+    s.update({"grid.n": str(c.grid.n), "grid.dx": repr(c.grid.dx), "puncture.mass_ratio": repr(spec.mass_ratio),
+              "hydro_corotating.x_a": repr(c.x_a), "hydro_corotating.rho_max": repr(c.rho_max),
+              "run.threads": str(spec.threads)})
+    return s
+
+
+def command(bhnsid: str, spec: Spec, c: Config, out: Path) -> List[str]:
+    cmd = [bhnsid, "run", str(spec.base), "--output", str(out)]
+    for k, v in settings(spec, c).items():
+        cmd += ["--set", f"{k}={v}"]
+    return cmd
+
+
+@dataclass
+class Outcome:
+    config: Config
+    status: str          # converged, failed, missing
+    message: str = ""
+    scalars: Optional[dict] = None
+    seconds: float = 0.0
+
+
+def read_outcome(c: Config, run_dir: Path) -> Outcome:
+    try:
+        summary = json.loads((run_dir / "summary.json").read_text())
+    except (OSError, ValueError):
+        return Outcome(c, "missing")
+    timers = run_dir / "timers.tsv"
+    seconds = 0.0
+    try:
+        for line in timers.read_text().splitlines():
+            if line.startswith("TOTAL\t"):
+                seconds = float(line.split("\t")[3])
+    except (OSError, ValueError, IndexError):
+        pass
+    return Outcome(c, summary.get("status", "missing"), summary.get("message", ""), summary.get("scalars"), seconds)
+
+
+def up_to_date(spec: Spec, c: Config, run_dir: Path) -> bool:
+    """Converged with exactly these settings (the run's own record of its command)."""
+    out = read_outcome(c, run_dir)
+    if out.status != "converged":
+        return False
+    try:
+        line = json.loads((run_dir / "summary.json").read_text())["provenance"]["command_line"]
+    except (OSError, ValueError, KeyError):
+        return False
+    words = shlex.split(line)
+    wanted = [f"{k}={v}" for k, v in settings(spec, c).items()]
+    return all(w in words for w in wanted) and str(spec.base) in words
+
+
+class Progress:
+    """One terminal line: done / running / failed / total and the time left."""
+
+    def __init__(self, total: int, stream=sys.stderr):
+        self.total, self.done, self.failed, self.running = total, 0, 0, 0
+        self.start = time.monotonic()
+        self.stream = stream
+        self.spent = 0.0  # seconds of the configurations run here
+
+    def show(self, note: str = ""):
+        elapsed = time.monotonic() - self.start
+        finished = self.done + self.failed
+        left = ""
+        if finished and self.running + (self.total - finished) > 0:
+            per = elapsed / max(finished, 1)
+            left = f", about {per * (self.total - finished) / 60:.1f} min left"
+        print(f"sequence: {self.done} done, {self.running} running, {self.failed} failed of {self.total}{left}"
+              f"{' - ' + note if note else ''}", file=self.stream, flush=True)
+
+
+def run_all(bhnsid: str, spec: Spec, root: Path, jobs: int, stream=sys.stderr) -> List[Outcome]:
+    """Runs every configuration not yet converged, `jobs` at a time; a failed configuration (the
+    Roche limit, no convergence) is an outcome, never an exception."""
+    todo, outcomes = [], {}
+    for c in configurations(spec):
+        run_dir = root / c.relative_dir
+        if up_to_date(spec, c, run_dir):
+            outcomes[c] = read_outcome(c, run_dir)
+        else:
+            todo.append(c)
+    progress = Progress(len(todo) + len(outcomes), stream)
+    progress.done = len(outcomes)
+    if outcomes:
+        progress.show(f"{len(outcomes)} already converged, skipped")
+
+    def one(c: Config) -> Outcome:
+        run_dir = root / c.relative_dir
+        run_dir.parent.mkdir(parents=True, exist_ok=True)
+        # A directory of an earlier attempt (failed, killed, other settings) is replaced; --force
+        # only ever removes what bhnsid wrote there.
+        cmd = command(bhnsid, spec, c, run_dir) + (["--force"] if run_dir.exists() else [])
+        with open(str(run_dir) + ".out", "w") as log:
+            subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, env=dict(os.environ))
+        return read_outcome(c, run_dir)
+
+    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        pending = set()
+        queue = list(todo)
+        while queue or pending:
+            while queue and len(pending) < max(1, jobs):
+                pending.add(pool.submit(one, queue.pop(0)))
+                progress.running = len(pending)
+            finished, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for f in finished:
+                o = f.result()
+                outcomes[o.config] = o
+                if o.status == "converged":
+                    progress.done += 1
+                else:
+                    progress.failed += 1
+                progress.running = len(pending)
+                progress.show(f"{o.config.relative_dir}: {o.status}" + (f" ({o.message[:120]})" if o.message else ""))
+    return [outcomes[c] for c in configurations(spec)]

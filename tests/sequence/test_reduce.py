@@ -1,0 +1,82 @@
+"""The sequence reduction on known answers: a spline that must be exact, a parabola whose vertex is
+known, the error model recovering the coefficients it was built from, and every refusal."""
+import sys
+import unittest
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "sequence"))
+from bhnsid_sequence.reduce import error_model, parabola_minimum, quadratic_at, spline_at  # noqa: E402
+
+
+class Spline(unittest.TestCase):
+    def test_a_cubic_is_reproduced_to_round_off(self):
+        m0 = [0.08, 0.095, 0.11, 0.12, 0.14]
+        f = lambda m: 3 - 2 * m + 40 * m ** 2 - 150 * m ** 3  # noqa: E731
+        got = spline_at(m0, [f(m) for m in m0], [0.09, 0.13])
+        for g, t in zip(got, [0.09, 0.13]):
+            self.assertAlmostEqual(g.value, f(t), places=13)
+
+    def test_a_smooth_function_converges_at_fourth_order(self):
+        errors = []
+        for n in (8, 16):
+            m0 = np.linspace(0.1, 0.2, n)
+            errors.append(abs(spline_at(m0, np.sin(20 * m0), [0.1537])[0].value - np.sin(20 * 0.1537)))
+        self.assertGreater(errors[0] / errors[1], 10)  # 2^4 = 16 asymptotically
+
+    def test_outside_the_range_and_too_few_points_are_reported(self):
+        got = spline_at([1, 2, 3, 4], [1, 2, 3, 4], [0.5, 4.5, 2.5])
+        self.assertIsNone(got[0].value)
+        self.assertIn("outside the computed range [1, 4]", got[0].reason)
+        self.assertIsNone(got[1].value)
+        self.assertAlmostEqual(got[2].value, 2.5)
+        self.assertIn("at least 4", spline_at([1, 2, 3], [1, 2, 3], [2])[0].reason)
+        self.assertIn("same M0", spline_at([1, 2, 2, 3], [1, 2, 3, 4], [2])[0].reason)
+
+    def test_unsorted_input_is_sorted(self):
+        got = spline_at([3, 1, 4, 2], [9, 1, 16, 4], [2.5])
+        self.assertAlmostEqual(got[0].value, 6.25, places=12)
+
+
+class Minimum(unittest.TestCase):
+    def test_vertex_of_a_parabola(self):
+        x = np.array([0.008, 0.009, 0.010, 0.011, 0.012])
+        m = parabola_minimum(x, (x - 0.0103) ** 2 - 0.0035)
+        self.assertAlmostEqual(m.x, 0.0103, places=12)
+        self.assertAlmostEqual(m.y, -0.0035, places=14)
+        self.assertEqual(m.indices, (1, 2, 3))
+        # Another quantity through the same three points, exact for a quadratic.
+        self.assertAlmostEqual(quadratic_at(x, 2 + 3 * x - x ** 2, m.indices, m.x), 2 + 3 * 0.0103 - 0.0103 ** 2, places=13)
+
+    def test_minimum_at_an_end_is_no_interior_minimum(self):
+        m = parabola_minimum([1, 2, 3, 4], [1, 2, 3, 4])
+        self.assertIsNone(m.x)
+        self.assertIn("no interior minimum", m.reason)
+        self.assertIn("needs 3", parabola_minimum([1, 2], [2, 1]).reason)
+
+
+class ErrorModelTest(unittest.TestCase):
+    # The paper's Table III grids: (n, dx), rc = n dx / 2.
+    configs = {1: [(256, 0.015), (128, 0.03), (160, 0.015)], 10: [(256, 0.01), (128, 0.02), (160, 0.014375)]}
+
+    def test_recovers_the_coefficients(self):
+        for mu, cfg in self.configs.items():
+            dx = [d for _, d in cfg]
+            rc = [n * d / 2 for n, d in cfg]
+            q = [-0.01 + 3.0 * d ** 2 + 0.2 / r ** 2 for d, r in zip(dx, rc)]
+            e = error_model(dx, rc, q)
+            self.assertAlmostEqual(e.q_exact, -0.01, places=12)
+            self.assertAlmostEqual(e.e_truncation, 3.0, places=8)
+            self.assertAlmostEqual(e.e_boundary, 0.2, places=10)
+            self.assertAlmostEqual(e.error_bar, max(abs(q[0] + 0.01), 3.0 * dx[0] ** 2, 0.2 / rc[0] ** 2), places=12)
+
+    def test_configurations_that_cannot_separate_the_errors_are_refused(self):
+        with self.assertRaisesRegex(ValueError, "do not separate"):
+            error_model([0.03, 0.015, 0.0075], [1.92, 1.92, 1.92], [1, 2, 3])
+        with self.assertRaisesRegex(ValueError, "exactly three"):
+            error_model([0.03, 0.015], [1.92, 1.2], [1, 2])
+
+
+if __name__ == "__main__":
+    unittest.main()
