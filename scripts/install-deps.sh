@@ -17,7 +17,7 @@ packages=(
 for option in "$@"; do
   case "$option" in
     --bench) packages+=(libhypre-dev libopenmpi-dev openmpi-bin) ;;  # the hypre peer of bench/compare_hypre.sh
-    --viz) packages+=(paraview xvfb xauth) ;;  # make test-viz: ParaView's pvbatch on a virtual X display
+    --viz) packages+=(paraview python3-paraview xvfb xauth) ;;  # make test-viz: pvbatch and its Python modules (a Recommends, which --no-install-recommends skips), on a virtual X display
     *) echo "install-deps: unknown option $option (expected --bench or --viz)" >&2; exit 2 ;;
   esac
 done
