@@ -36,13 +36,20 @@ void print_params(const PluginDecl& decl) {
 }  // namespace
 
 int cmd_run(const std::string& parfile, const CommonOptions& common, const std::string& output, bool force, bool resume,
-            bool verbose) {
+            const std::string& warm_start, bool verbose) {
   PluginLoader loader = make_loader(common);
   const Configuration config = configure(parfile, common.overrides, loader);
   RunOptions options;
   options.run_directory = output.empty() ? fs::path("runs") / fs::path(parfile).stem() : fs::path(output);
   options.force = force;
   options.resume = resume;
+  options.warm_start = warm_start;
+  // --force replaces the run directory: never the one the warm start reads.
+  std::error_code ec;
+  if (!warm_start.empty() && fs::exists(options.run_directory, ec) &&
+      fs::equivalent(fs::path(warm_start), options.run_directory, ec))
+    throw InputError(fmt::format("--warm-start {}: is the run directory of this run; warm-start from another run",
+                                       warm_start));
   options.verbose = verbose;
   options.command_line = common.command_line;
   options.protect.push_back(fs::path(parfile));

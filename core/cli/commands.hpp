@@ -12,7 +12,7 @@ struct CommonOptions {
 };
 
 int cmd_run(const std::string& parfile, const CommonOptions& common, const std::string& output, bool force, bool resume,
-            bool verbose);
+            const std::string& warm_start, bool verbose);
 int cmd_check(const std::string& parfile, const CommonOptions& common);
 int cmd_schedule(const std::string& parfile, const CommonOptions& common);
 int cmd_params(const std::vector<std::string>& plugins, bool yaml, const CommonOptions& common);

@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
     sub->add_option("--plugin-path", common.plugin_dirs, "extra plugin folder, searched after the build's and BHNSID_PLUGIN_PATH (repeatable)")
         ->allow_extra_args(false);  // one folder per flag, so a following parameter file stays positional
   };
-  std::string parfile, output;
+  std::string parfile, output, warm_start;
   bool force = false, resume = false, yaml = false, verbose = false;
   std::vector<std::string> plugin_names;
 
@@ -88,6 +88,10 @@ int main(int argc, char** argv) {
                 "continue the run in the run directory from its newest checkpoint (same parameters and build; "
                 "run.max_iterations may grow)")
       ->excludes("--force");
+  run->add_option("--warm-start", warm_start,
+                  "start from the newest checkpoint of another run directory of this build whose parameters differ "
+                  "only in steerable ones (a sequence's neighbour)")
+      ->excludes("--resume");
   run->add_flag("--verbose", verbose, "print log.txt's detail lines too (every multigrid cycle, every plugin step)");
   add_plugin_path(run);
 
@@ -153,7 +157,7 @@ int main(int argc, char** argv) {
     // must not fail it. Every other command's result is what it prints: the signals keep their
     // default actions (`bhnsid params | head` ends quietly) and a failed write is an error.
     if (run->parsed() || validate->parsed()) core::install_interrupt_handlers();
-    if (run->parsed()) return cli::cmd_run(parfile, common, output, force, resume, verbose);
+    if (run->parsed()) return cli::cmd_run(parfile, common, output, force, resume, warm_start, verbose);
     if (validate->parsed()) return cli::cmd_validate(parfile, common, vopt);
     int code = core::exit_internal;
     try {

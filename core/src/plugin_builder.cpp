@@ -105,6 +105,8 @@ void PluginBuilder::checkpoint(CheckpointSaveFn save, CheckpointRestoreFn restor
   decl_.checkpoint_restore = std::move(restore);
 }
 
+void PluginBuilder::warm_start(CheckpointRestoreFn fn) { decl_.warm_start = std::move(fn); }
+
 namespace {
 bool is_identifier(const std::string& s) {
   if (s.empty() || !std::islower(static_cast<unsigned char>(s[0]))) return false;

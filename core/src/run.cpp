@@ -308,6 +308,9 @@ RunResult run(const Configuration& config, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   // Cross-parameter checks before anything is written: bad input leaves no run directory.
   const MemoryEstimate memory = check_parameters(config);
+  // So is a warm start that reads a run of another build or other parameters.
+  WarmPoint warm;
+  if (!options.warm_start.empty()) warm = find_warm_point(options.warm_start, config, build_id(config));
   const std::unique_ptr<RunDirectory> directory_owner =
       options.resume ? std::make_unique<RunDirectory>(options.run_directory, "run", RunDirectory::ReopenTag{})
                      : std::make_unique<RunDirectory>(options.run_directory, options.force, "run", options.protect);
@@ -386,6 +389,18 @@ RunResult run(const Configuration& config, const RunOptions& options) {
       ok = false;
     }
     resume.file.reset();
+  }
+  if (ok && warm.file) {
+    try {
+      apply_warm_start(state, context_of, *warm.file);
+      log.info("warm start from {} (iteration {}{}){}", warm.file->path().string(), warm.iteration,
+               warm.converged ? ", converged" : ", not converged",
+               warm.changed.empty() ? "" : fmt::format(": {}", warm.changed));
+    } catch (const std::exception& e) {
+      exec.fail(fmt::format("--warm-start: {}", e.what()), exit_input);
+      ok = false;
+    }
+    warm.file.reset();
   }
   // A run whose restore failed holds the initial guess, not the earlier run's state: no OUTPUT over it.
   const bool reached_loop = ok;

@@ -68,6 +68,40 @@ int threads_now() {
 #endif
 }
 
+// Every parameter of `config` equals the one the checkpoint `f` was written with, except those
+// `may_change` lets through; InputError naming the parameter file, the key and both values.
+void check_parameters_match(CheckpointFileReader& f, const Configuration& config,
+                            const std::function<bool(const std::string&)>& may_change, const std::string& advice) {
+  f.section(core_section);
+  const auto was = fingerprint_lines(f.string("parameters"));
+  const auto now = fingerprint_lines(parameter_fingerprint(config));
+  for (const auto& [key, value] : now) {
+    if (may_change(key)) continue;
+    auto it = was.find(key);
+    if (it == was.end() || it->second != value)
+      throw InputError(fmt::format("{}: {}: the checkpoint {} was written with {}, this run has {} = {}; {}",
+                                   config.file.source, key, f.path().string(),
+                                   it == was.end() ? "no such parameter" : key + " = " + it->second, key, value, advice));
+  }
+  for (const auto& [key, value] : was)
+    if (!may_change(key) && !now.count(key))
+      throw InputError(fmt::format("{}: the checkpoint {} was written with {} = {}, which this run does not have (another "
+                                   "plugin set); {}",
+                                   config.file.source, f.path().string(), key, value, advice));
+}
+
+// A parameter its plugin declared steerable: one that may differ between the runs of a sequence.
+bool steerable(const Configuration& config, const std::string& key) {
+  const std::size_t dot = key.find('.');
+  if (dot == std::string::npos) return false;
+  for (const auto* decl : config.decls)
+    if (decl->name == key.substr(0, dot)) {
+      const ParamSpec* spec = decl->find_param(key.substr(dot + 1));
+      return spec && spec->steerable;
+    }
+  return false;
+}
+
 }  // namespace
 
 std::string build_id(const Configuration& config) {
@@ -176,23 +210,9 @@ ResumePoint find_resume_point(const fs::path& run_dir, const Configuration& conf
                                    "core library or a plugin changed); resume with the build that wrote it, or start "
                                    "again with --force",
                                    f.path().string(), theirs, build));
-    const auto was = fingerprint_lines(f.string("parameters"));
-    const auto now = fingerprint_lines(parameter_fingerprint(config));
-    for (const auto& [key, value] : now) {
-      if (may_differ(key)) continue;
-      auto it = was.find(key);
-      if (it == was.end() || it->second != value)
-        throw InputError(fmt::format("{}: {}: the checkpoint was written with {}, this run has {} = {}; resume with the "
-                                     "parameters of the run (only run.max_iterations and the "
-                                     "checkpoint settings may change) or start again with --force",
-                                     config.file.source, key, it == was.end() ? "no such parameter" : key + " = " + it->second,
-                                     key, value));
-    }
-    for (const auto& [key, value] : was)
-      if (!may_differ(key) && !now.count(key))
-        throw InputError(fmt::format("{}: the checkpoint {} was written with {} = {}, which this run does not have (another "
-                                     "plugin set); resume with the parameters of the run or start again with --force",
-                                     config.file.source, f.path().string(), key, value));
+    check_parameters_match(f, config, may_differ,
+                           "resume with the parameters of the run (only run.max_iterations and the checkpoint settings "
+                           "may change) or start again with --force");
     const std::int64_t threads = f.integer("threads");
     if (threads != threads_now())
       log.warn("{}: written with {} OpenMP threads, this run has {}: the result will agree to round-off, not to the bit "
@@ -204,6 +224,45 @@ ResumePoint find_resume_point(const fs::path& run_dir, const Configuration& conf
   }
   throw InputError(fmt::format("{}: no checkpoint there reads back whole:{}; start the run again with --force",
                                dir.string(), refused));
+}
+
+WarmPoint find_warm_point(const fs::path& source_dir, const Configuration& config, const std::string& build) {
+  const fs::path dir = source_dir / checkpoint_dir_name;
+  const std::vector<int> iterations = checkpoint_iterations(dir);
+  if (iterations.empty())
+    throw InputError(fmt::format("--warm-start {}: no checkpoint there (not a run directory, the run stopped before its "
+                                 "first loop iteration ended, or run.checkpoint_every = 0)",
+                                 source_dir.string()));
+  WarmPoint point;
+  // The newest only: a warm start from an older state than the neighbour's last is not what was asked.
+  point.file = std::make_unique<CheckpointFileReader>(checkpoint_path(dir, iterations.front()));
+  CheckpointFileReader& f = *point.file;
+  f.section(core_section);
+  const std::string theirs = f.string("build_id");
+  if (theirs != build)
+    throw InputError(fmt::format("--warm-start {}: written by another build of bhnsid (build id {}, this one {}); a warm "
+                                 "start reads the plugins' own state, which only the same build knows",
+                                 f.path().string(), theirs, build));
+  const auto may_change = [&config](const std::string& key) { return may_differ(key) || steerable(config, key); };
+  check_parameters_match(f, config, may_change,
+                         "a warm start may change only steerable parameters (bhnsid params marks them [steerable])");
+  const auto was = fingerprint_lines(f.string("parameters"));
+  for (const auto& [key, value] : fingerprint_lines(parameter_fingerprint(config))) {
+    auto it = was.find(key);
+    if (it != was.end() && it->second != value && !may_differ(key))
+      point.changed += fmt::format("{}{} {} -> {}", point.changed.empty() ? "" : ", ", key, it->second, value);
+  }
+  point.iteration = static_cast<int>(f.integer("iteration"));
+  point.converged = f.integer("converged") != 0;
+  return point;
+}
+
+void apply_warm_start(RunState& state, const ContextOf& context, CheckpointFileReader& f) {
+  for (const auto* decl : state.config.decls) {
+    if (!decl->warm_start || !f.has_section(decl->name)) continue;
+    f.section(decl->name);
+    decl->warm_start(context(decl->name), f);
+  }
 }
 
 void restore_checkpoint(RunState& state, const ContextOf& context, CheckpointFileReader& f) {

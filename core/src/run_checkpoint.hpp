@@ -43,6 +43,20 @@ struct ResumePoint {
 ResumePoint find_resume_point(const std::filesystem::path& run_dir, const Configuration& config, const std::string& build,
                               const Log& log);
 
+/// The newest checkpoint of another run (`bhnsid run --warm-start DIR`): same build, and parameters
+/// that differ only where a plugin declared them steerable (InputError naming the key otherwise).
+struct WarmPoint {
+  std::unique_ptr<CheckpointFileReader> file;
+  int iteration = 0;
+  bool converged = false;
+  std::string changed;  ///< "section.key old -> new, ..." for the log
+};
+WarmPoint find_warm_point(const std::filesystem::path& source_dir, const Configuration& config, const std::string& build);
+
+/// Hands each plugin that declared a warm start its section of `file` (after INITIAL); the core's
+/// own loop state (iteration, history) is not taken: the run starts its loop at iteration 1.
+void apply_warm_start(RunState& state, const ContextOf& context, CheckpointFileReader& file);
+
 /// Restores the core's loop state (iteration, history, scalars) and every plugin's section.
 void restore_checkpoint(RunState& state, const ContextOf& context, CheckpointFileReader& file);
 

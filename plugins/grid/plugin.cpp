@@ -97,6 +97,9 @@ void declare(core::PluginBuilder& b) {
 
   b.checkpoint([state](Context&, core::CheckpointWriter& out) { state->grid->save(out); },
                [state](Context&, const core::CheckpointReader& in) { state->grid->restore(in); });
+  // A neighbour of the same lattice: its fields (and the excision masks the shift restores with
+  // them) are the warm start's initial guess.
+  b.warm_start([state](Context&, const core::CheckpointReader& in) { state->grid->restore(in); });
 
   b.schedule(Bin::terminate, "report_memory", [state](Context& ctx) {
      if (!state->grid) return;

@@ -61,7 +61,11 @@ void declare(core::PluginBuilder& b) {
     }
   });
 
-  b.real("rho_max").doc("maximum rest-mass density (rho0)_max of the star, a fixed input (code units, K = 1)").required(0.1).greater_than(0);
+  b.real("rho_max")
+      .doc("maximum rest-mass density (rho0)_max of the star, a fixed input (code units, K = 1)")
+      .required(0.1)
+      .greater_than(0)
+      .steerable();
   b.real("x_a")
       .doc("hatted x of the star's inner surface point xhat_A (the outer one is xhat = 1); -1 centres the star at the "
            "origin (physics-notes §9 T1)")
@@ -105,6 +109,7 @@ void declare(core::PluginBuilder& b) {
 
   b.checkpoint([state](Context&, core::CheckpointWriter& out) { state->star->save(out); },
                [state](Context&, const core::CheckpointReader& in) { state->star->restore(in); });
+  b.warm_start([state](Context&, const core::CheckpointReader& in) { state->star->warm_start(in); });
 
   b.schedule(Bin::update, "outer_step", [state](Context& ctx) {
      const StepReport r = state->star->step(ctx.step_fraction());

@@ -66,6 +66,9 @@ class Star {
   /// (star_checkpoint.cpp); the density itself is a grid field, saved by the grid.
   void save(core::CheckpointWriter& out) const;
   void restore(const core::CheckpointReader& in);
+  /// From a neighbour's checkpoint (another rho_max): its sigma, C_B, Omegahat and xhat_C as the start
+  /// of the outer iteration; the star's target (rho_max, M0) and convergence history stay this run's.
+  void warm_start(const core::CheckpointReader& in);
 
   double rhat_star() const { return 0.5 * (1.0 - settings_.x_a); }
   const std::vector<StepReport>& history() const { return history_; }

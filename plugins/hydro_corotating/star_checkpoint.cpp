@@ -17,6 +17,8 @@ void Star::save(core::CheckpointWriter& out) const {
   put_constants(now, fluid_->constants);
   now.insert(now.end(), {fluid_->converged ? 1.0 : 0.0, m0_change_, undone_rest_mass_});
   out.put("state", now);
+  // What a warm start of another rho_max scales the constants from (warm_start below).
+  out.put("rho_max", settings_.rho_max);
   // Every report as its numbers (iteration, matter_points and converged are small integers, exact
   // in a double).
   std::vector<double> reports;
@@ -55,6 +57,23 @@ void Star::restore(const core::CheckpointReader& in) {
     r.m0_change_before = tail[4];
     history_.push_back(r);
   }
+}
+
+void Star::warm_start(const core::CheckpointReader& in) {
+  const std::vector<double> now = in.reals("state");
+  if (now.size() != constants_size + 3) throw core::InputError("hydro_corotating: the checkpoint's star state is malformed");
+  StarConstants c = constants_at(now.data());
+  // The neighbour's sigma and C_B relative to its TOV star, carried over to ours: sigma / (R_iso/Rhat)
+  // and C_B / (h_max alpha_c) vary slowly along a sequence, sigma and C_B themselves by as much as
+  // R_iso and the central enthalpy do. Its raw sigma (a 20 % step in rho_max puts it ~5 % away) sent
+  // the first Newton step over the fold of the sigma model (physics-notes §2.2, §4.4).
+  const double rho_theirs = in.real("rho_max");
+  if (!(rho_theirs > 0)) throw core::InputError("hydro_corotating: the checkpoint's rho_max is malformed");
+  const TovStar theirs = family_.star(rho_theirs);
+  c.sigma *= tov_.radius_isotropic / theirs.radius_isotropic;
+  c.bernoulli *= (eos_.enthalpy(settings_.rho_max) * tov_.lapse_center) / (eos_.enthalpy(rho_theirs) * theirs.lapse_center);
+  // x_c too: the loop moves it with the density maximum, from the same x_a (not steerable).
+  fluid_->constants = c;
 }
 
 }  // namespace bhnsid::hydro_corotating

@@ -93,13 +93,17 @@ void CoarseSolver::restore(const core::CheckpointReader& in) {
     for (std::int64_t e = outer[static_cast<std::size_t>(c)]; e < outer[static_cast<std::size_t>(c) + 1]; ++e)
       entries.emplace_back(static_cast<int>(inner[static_cast<std::size_t>(e)]), static_cast<int>(c),
                            values[static_cast<std::size_t>(e)]);
+  if (!factorise_entries(n, entries))
+    throw core::RunFailure("multigrid: the checkpoint's coarsest-level Jacobian does not factorise again");
+}
+
+bool CoarseSolver::factorise_entries(Eigen::Index n, const std::vector<Eigen::Triplet<double>>& entries) {
   jacobian_ = Eigen::SparseMatrix<double>(n, n);
   jacobian_.setFromTriplets(entries.begin(), entries.end());
   jacobian_.makeCompressed();
   lu_.analyzePattern(jacobian_);
   lu_.factorize(jacobian_);
-  if (lu_.info() != Eigen::Success)
-    throw core::RunFailure("multigrid: the checkpoint's coarsest-level Jacobian does not factorise again");
+  return lu_.info() == Eigen::Success;
 }
 
 void CoarseSolver::residual_vector(int level, Eigen::VectorXd& out) {
@@ -166,12 +170,7 @@ void CoarseSolver::factorise(int level, const Eigen::VectorXd& r0) {
       }
   }
   const auto n = static_cast<Eigen::Index>(unknowns_.size());
-  jacobian_ = Eigen::SparseMatrix<double>(n, n);
-  jacobian_.setFromTriplets(entries.begin(), entries.end());
-  jacobian_.makeCompressed();
-  lu_.analyzePattern(jacobian_);
-  lu_.factorize(jacobian_);
-  if (lu_.info() != Eigen::Success)
+  if (!factorise_entries(n, entries))
     throw core::RunFailure(fmt::format("multigrid: the coarsest level's Jacobian ({} unknowns) is singular: {}",
                                        unknowns_.size(), lu_.lastErrorMessage()));
   factorised_ = true;

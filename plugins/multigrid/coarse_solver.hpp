@@ -39,6 +39,8 @@ class CoarseSolver {
   void residual_vector(int level, Eigen::VectorXd& out);
   void factorise(int level, const Eigen::VectorXd& r0);
   double* value(const Unknown& x, int level, bool residual);
+  /// jacobian_ from its entries, factorised into lu_; false when singular.
+  bool factorise_entries(Eigen::Index n, const std::vector<Eigen::Triplet<double>>& entries);
 
   FasSolver& solver_;
   int level_ = -1;

@@ -162,6 +162,13 @@ void declare(core::PluginBuilder& b) {
         make_solver(ctx);
         state->solver->restore(in);
       });
+  // A neighbour's converged fields: continue them with cycles (its tau and coarse Jacobian are
+  // this lattice's and nearly this problem's); the cycle count is this run's own.
+  b.warm_start([state, make_solver](Context& ctx, const core::CheckpointReader& in) {
+    if (in.integer("has_solver") == 0) return;
+    make_solver(ctx);
+    state->solver->restore(in);
+  });
 
   b.schedule(Bin::solve, "solve", [state, make_solver](Context& ctx) {
      make_solver(ctx);

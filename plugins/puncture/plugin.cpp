@@ -132,13 +132,7 @@ void declare(core::PluginBuilder& b) {
       .doc("with mass_ratio > 0: the hole again from the initial star, whose initial data set sigma_0");
 
   // INITIAL places the hole for the initial star; a resume puts back where the loop had moved it.
-  b.checkpoint(
-      [hole](Context&, core::CheckpointWriter& out) {
-        out.put("hole", {hole->mass, hole->x[0], hole->x[1], hole->x[2], hole->p[0], hole->p[1], hole->p[2]});
-        if (const auto& b4 = hole->before_update)
-          out.put("before_update", {b4->mass, b4->x[0], b4->x[1], b4->x[2], b4->p[0], b4->p[1], b4->p[2]});
-      },
-      [hole](Context&, const core::CheckpointReader& in) {
+  const auto restore_hole = [hole](Context&, const core::CheckpointReader& in) {
         const std::vector<double> h = in.reals("hole");
         if (h.size() != 7) throw core::InputError("puncture: the checkpoint's hole is malformed");
         hole->mass = h[0];
@@ -150,7 +144,16 @@ void declare(core::PluginBuilder& b) {
           if (b4.size() != 7) throw core::InputError("puncture: the checkpoint's hole is malformed");
           hole->before_update = Hole::Saved{b4[0], {b4[1], b4[2], b4[3]}, {b4[4], b4[5], b4[6]}};
         }
-      });
+      };
+  b.checkpoint(
+      [hole](Context&, core::CheckpointWriter& out) {
+        out.put("hole", {hole->mass, hole->x[0], hole->x[1], hole->x[2], hole->p[0], hole->p[1], hole->p[2]});
+        if (const auto& b4 = hole->before_update)
+          out.put("before_update", {b4->mass, b4->x[0], b4->x[1], b4->x[2], b4->p[0], b4->p[1], b4->p[2]});
+      },
+      restore_hole);
+  // A sequence neighbour's hole (mass, position, momentum) matches the fields and star it hands over.
+  b.warm_start(restore_hole);
 
   b.schedule(Bin::update, "binary_update", [hole](Context& ctx) {
      const double mu = ctx.params().real("mass_ratio");

@@ -20,6 +20,8 @@ def main(argv=None) -> int:
     p.add_argument("--output", help="sequence directory (default runs/<file stem>)")
     p.add_argument("--jobs", type=int, default=1, help="runs at once (each with sequence.threads threads)")
     p.add_argument("--reduce-only", action="store_true", help="only reduce the runs already there")
+    p.add_argument("--cold", action="store_true",
+                   help="start every run from its own initial guess (no warm start from a converged neighbour)")
     p.add_argument("--bhnsid", help="the bhnsid executable (default: the one beside this tool)")
     args = p.parse_args(argv)
     try:
@@ -48,7 +50,7 @@ def main(argv=None) -> int:
     if args.reduce_only:
         outcomes = [read_outcome(c, root / c.relative_dir) for c in configurations(spec)]
     else:
-        outcomes = run_all(bhnsid, spec, root, args.jobs)
+        outcomes = run_all(bhnsid, spec, root, args.jobs, warm=not args.cold)
     table = at_targets(spec, outcomes)
     found = minima(spec, table)
     try:

@@ -39,11 +39,37 @@ def settings(spec: Spec, c: Config) -> Dict[str, str]:
     return s
 
 
-def command(bhnsid: str, spec: Spec, c: Config, out: Path) -> List[str]:
+def command(bhnsid: str, spec: Spec, c: Config, out: Path, warm_from: Optional[Path] = None) -> List[str]:
     cmd = [bhnsid, "run", str(spec.base), "--output", str(out)]
     for k, v in settings(spec, c).items():
         cmd += ["--set", f"{k}={v}"]
+    if warm_from is not None:
+        cmd += ["--warm-start", str(warm_from)]
     return cmd
+
+
+def chain(spec: Spec, c: Config) -> List[Config]:
+    """The configurations of c's grid and xhat_A, by rho_max: the line along which runs warm-start."""
+    return [Config(c.grid_index, c.grid, c.x_a, rho) for rho in spec.rho_max]
+
+
+def warm_source(spec: Spec, c: Config) -> Optional[Config]:
+    """The run c starts from when it has converged: the next lower rho_max of its chain (same grid,
+    same xhat_A, so the same lattice and star position; the lowest rho_max, furthest from the
+    fold, starts cold). A scheduler runs c after it."""
+    line = chain(spec, c)
+    i = line.index(c)
+    return line[i - 1] if i > 0 else None
+
+
+def warm_run_dir(spec: Spec, c: Config, root: Path) -> Optional[Path]:
+    """The nearest lower converged run of c's chain, if any (an unconverged neighbour is passed over)."""
+    line = chain(spec, c)
+    for d in reversed(line[:line.index(c)]):
+        run_dir = root / d.relative_dir
+        if read_outcome(d, run_dir).status == "converged" and (run_dir / "checkpoints").is_dir():
+            return run_dir
+    return None
 
 
 @dataclass
@@ -105,7 +131,43 @@ class Progress:
               f"{' - ' + note if note else ''}", file=self.stream, flush=True)
 
 
-def run_all(bhnsid: str, spec: Spec, root: Path, jobs: int, stream=sys.stderr) -> List[Outcome]:
+def run_one(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = True) -> Outcome:
+    """Runs one configuration in its run directory (the pool's worker and a SLURM array task alike),
+    warm-started from its nearest converged lower-rho_max neighbour when there is one."""
+    run_dir = root / c.relative_dir
+    run_dir.parent.mkdir(parents=True, exist_ok=True)
+    source = warm_run_dir(spec, c, root) if warm else None
+    # A directory of an earlier attempt (failed, killed, other settings) is replaced; --force
+    # only ever removes what bhnsid wrote there.
+    cmd = command(bhnsid, spec, c, run_dir, source) + (["--force"] if run_dir.exists() else [])
+    with open(str(run_dir) + ".out", "w") as log:
+        subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, env=dict(os.environ))
+    outcome = read_outcome(c, run_dir)
+    if outcome.status == "converged":
+        # A run's checkpoints (two of 2.5 GB at n = 256) serve only the next run of its chain: gone
+        # once that one has converged from them, or at once for the last of a chain.
+        if source is not None:
+            drop_checkpoints(source)
+        if chain(spec, c)[-1] == c:
+            drop_checkpoints(run_dir)
+    return outcome
+
+
+def drop_checkpoints(run_dir: Path) -> None:
+    """Removes what bhnsid wrote in RUN_DIR/checkpoints (checkpoint.NNNNNN and .partial files)."""
+    folder = run_dir / "checkpoints"
+    if not folder.is_dir():
+        return
+    for f in folder.iterdir():
+        if f.name.startswith("checkpoint.") and f.is_file():
+            f.unlink()
+    try:
+        folder.rmdir()
+    except OSError:
+        pass  # something else is there: not ours to remove
+
+
+def run_all(bhnsid: str, spec: Spec, root: Path, jobs: int, stream=sys.stderr, warm: bool = True) -> List[Outcome]:
     """Runs every configuration not yet converged, `jobs` at a time; a failed configuration (the
     Roche limit, no convergence) is an outcome, never an exception."""
     todo, outcomes = [], {}
@@ -120,25 +182,26 @@ def run_all(bhnsid: str, spec: Spec, root: Path, jobs: int, stream=sys.stderr) -
     if outcomes:
         progress.show(f"{len(outcomes)} already converged, skipped")
 
-    def one(c: Config) -> Outcome:
-        run_dir = root / c.relative_dir
-        run_dir.parent.mkdir(parents=True, exist_ok=True)
-        # A directory of an earlier attempt (failed, killed, other settings) is replaced; --force
-        # only ever removes what bhnsid wrote there.
-        cmd = command(bhnsid, spec, c, run_dir) + (["--force"] if run_dir.exists() else [])
-        with open(str(run_dir) + ".out", "w") as log:
-            subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, env=dict(os.environ))
-        return read_outcome(c, run_dir)
-
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        pending = set()
+        pending = {}
         queue = list(todo)
+
+        def ready(c: Config) -> bool:
+            # A run waits for the neighbour it would warm-start from (queued or running).
+            source = warm_source(spec, c) if warm else None
+            return source is None or (source not in queue and source not in pending.values())
+
         while queue or pending:
-            while queue and len(pending) < max(1, jobs):
-                pending.add(pool.submit(one, queue.pop(0)))
+            while len(pending) < max(1, jobs):
+                c = next((q for q in queue if ready(q)), None)
+                if c is None:
+                    break
+                queue.remove(c)
+                pending[pool.submit(run_one, bhnsid, spec, root, c, warm)] = c
                 progress.running = len(pending)
-            finished, pending = wait(pending, return_when=FIRST_COMPLETED)
+            finished, _ = wait(set(pending), return_when=FIRST_COMPLETED)
             for f in finished:
+                del pending[f]
                 o = f.result()
                 outcomes[o.config] = o
                 if o.status == "converged":

@@ -1,6 +1,7 @@
 // Test plugin: a loop whose state lives in the plugin's memory alone (a fixed-point iteration
 // x <- x/2 + target/2 and the history of its changes), so that a resumed run can only end where an
-// uninterrupted one does if the checkpoint carried that state back.
+// uninterrupted one does if the checkpoint carried that state back. target is steerable: a warm
+// start from a run of another target takes its x.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -21,11 +22,12 @@ struct State {
 
 void declare(PluginBuilder& b) {
   auto s = std::make_shared<State>();
-  b.real("target").doc("the fixed point").default_value(3.0);
+  b.real("target").doc("the fixed point").default_value(3.0).steerable();
+  b.real("wobble").doc("amplitude of the step's sin(step) term, which makes every step count matter").default_value(1e-3);
   b.real("tolerance").doc("converged when the last change is below this").default_value(1e-6).greater_than(0);
   b.schedule(Bin::initial, "start", [s](Context&) { s->x = 0; });
   b.schedule(Bin::update, "step", [s](Context& ctx) {
-    const double next = 0.5 * s->x + 0.5 * ctx.params().real("target") + 1e-3 * std::sin(static_cast<double>(s->changes.size()));
+    const double next = 0.5 * s->x + 0.5 * ctx.params().real("target") + ctx.params().real("wobble") * std::sin(static_cast<double>(s->changes.size()));
     s->changes.push_back(std::fabs(next - s->x));
     s->x = next;
     ctx.show_progress("x", s->x);
@@ -47,6 +49,8 @@ void declare(PluginBuilder& b) {
         s->x = in.real("x");
         s->changes = in.reals("changes");
       });
+  // A neighbour's fixed point is this one's start; its history of changes is not this run's.
+  b.warm_start([s](Context&, const CheckpointReader& in) { s->x = in.real("x"); });
 }
 }  // namespace
 

@@ -16,7 +16,7 @@
 #include "bhnsid/core/schedule.hpp"
 #include "bhnsid/core/variables.hpp"
 
-#define BHNSID_ABI_VERSION 2u  // 2: PluginDecl gained the checkpoint functions
+#define BHNSID_ABI_VERSION 3u  // 2: PluginDecl gained the checkpoint functions; 3: the warm start
 #define BHNSID_EXPORT __attribute__((visibility("default")))
 
 namespace bhnsid::core {
@@ -32,6 +32,7 @@ struct PluginDecl {
   std::vector<MemoryEstimator> memory;
   CheckpointSaveFn checkpoint_save;  ///< empty: the plugin keeps no state across loop iterations
   CheckpointRestoreFn checkpoint_restore;
+  CheckpointRestoreFn warm_start;  ///< empty: a warm-started run keeps this plugin's INITIAL state
 
   const ParamSpec* find_param(const std::string& key) const;
 };
@@ -103,6 +104,13 @@ class PluginBuilder {
   /// `save` runs after every iteration, `restore` on --resume after INITIAL, before the loop goes
   /// on. A plugin without one is taken to carry none.
   void checkpoint(CheckpointSaveFn save, CheckpointRestoreFn restore);
+
+  /// `bhnsid run FILE --warm-start DIR`: after INITIAL, `fn` reads this plugin's section of the
+  /// newest checkpoint of another run DIR of the same build whose parameters differ only in
+  /// steerable ones (a neighbour of a sequence). It takes what is a good start for these parameters
+  /// (fields, constants) and leaves what they decide (a star's mass, a convergence history) as
+  /// INITIAL made it. The loop then starts at iteration 1.
+  void warm_start(CheckpointRestoreFn fn);
 
  private:
   ParamHandle add_param(std::string name, ParamType type);
