@@ -30,6 +30,7 @@ StarSettings settings_from(const core::ParamSection& p) {
   s.rho_max = p.real("rho_max");
   s.x_a = p.real("x_a");
   s.sigma_guess = p.real("sigma_guess");
+  s.model_hole_delta = p.real("model_hole_delta");
   s.tolerance = p.real("tolerance");
   s.iterate = p.boolean("iterate");
   return s;
@@ -72,6 +73,12 @@ void declare(core::PluginBuilder& b) {
       .default_value(-1.0)
       .at_least(-1.0)
       .less_than(1.0);
+  b.real("model_hole_delta")
+      .doc("share of the hole's delta = Mhat_BH/(2 dhat) in the sigma-model's sigma (1 + delta)^2 (physics-notes §4.5); "
+           "halved, then 0, when the Newton solve fails with it. Shapes the path, not the fixed point")
+      .default_value(1.0)
+      .at_least(0)
+      .at_most(1);
   b.real("sigma_guess").doc("initial sigma; 0: R_iso(rho_max) / Rhat with Rhat = (1 - x_a)/2 (physics-notes §4.7)").default_value(0.0).at_least(0);
   b.real("tolerance")
       .doc("converged when the relative changes of sigma, C_B (and Omegahat with a black hole) of an outer step and of M0 "
@@ -113,6 +120,7 @@ void declare(core::PluginBuilder& b) {
 
   b.schedule(Bin::update, "outer_step", [state](Context& ctx) {
      const StepReport r = state->star->step(ctx.step_fraction());
+     if (!r.model_note.empty()) ctx.log().warn("hydro_corotating (outer step {}): {}", r.iteration, r.model_note);
      ctx.show_progress("sigma", r.after.sigma);
      if (r.after.omega_hat != 0) ctx.show_progress("omega_hat", r.after.omega_hat);
      ctx.show_progress("bernoulli_constant", r.after.bernoulli);

@@ -27,6 +27,7 @@ Star::Star(Grid& grid, const Eos& eos, const TovFamily& family, StarSettings set
   fluid_->initial_mass = tov_.rest_mass;
   fluid_->constants.x_c = 0.5 * (1.0 + settings.x_a);
   fluid_->robin_centre = fluid_->constants.x_c;
+  delta_weight_ = settings.model_hole_delta;
   fluid_->constants.sigma = settings.sigma_guess > 0 ? settings.sigma_guess : tov_.radius_isotropic / rhat_star();
   fluid_->constants.bernoulli = eos.enthalpy(settings.rho_max) * tov_.lapse_center;
 }
@@ -38,7 +39,7 @@ double Star::hole_delta() const {
 }
 
 double Star::model_sigma(double sigma) const {
-  const double g = 1.0 + hole_delta();
+  const double g = 1.0 + delta_weight_ * hole_delta();
   return sigma * g * g;
 }
 
@@ -191,9 +192,20 @@ StepReport Star::step(double fraction) {
       return v;
     };
     const double omega_start = now.omega_hat > 0 ? now.omega_hat : kepler_omega();
-    const OrbitResult r = solve_sigma_omega_bernoulli(points, model, now.sigma, omega_start, now.bernoulli);
-    solved = {r.sigma, r.bernoulli};
-    omega = r.omega_hat;
+    for (;;) {
+      try {
+        const OrbitResult r = solve_sigma_omega_bernoulli(points, model, now.sigma, omega_start, now.bernoulli);
+        solved = {r.sigma, r.bernoulli};
+        omega = r.omega_hat;
+        break;
+      } catch (const core::RunFailure& e) {
+        if (delta_weight_ == 0) throw;
+        const double was = delta_weight_;
+        delta_weight_ = delta_weight_ > 0.2 ? 0.5 * delta_weight_ : 0.0;
+        report.model_note += fmt::format("{}the sigma-model with {:.3g} of the hole's delta failed ({}); now {:.3g}",
+                                         report.model_note.empty() ? "" : "; ", was, e.what(), delta_weight_);
+      }
+    }
   }
   // A retreat's shorter step: every constant of the Newton solution the same fraction of the way,
   // so that the density stays between two consistent states.

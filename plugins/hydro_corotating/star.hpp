@@ -25,6 +25,7 @@ struct StarSettings {
   double rho_max = 0;        ///< (rho0)_max, a fixed input (physics-notes §3)
   double x_a = -1;           ///< xhat_A, the inner surface point on the x axis; -1: centred star
   double sigma_guess = 0;    ///< initial sigma; 0: R_iso(rho_max) / Rhat (physics-notes §4.7)
+  double model_hole_delta = 1;  ///< the sigma-model's initial share of the hole's delta (delta_weight_)
   double tolerance = 1e-6;   ///< on |d sigma / sigma| and |d C_B / C_B|
   bool iterate = true;       ///< false: keep the initial TOV density (a fixed-source solve)
 };
@@ -39,6 +40,7 @@ struct StepReport {
   double fraction = 1;         ///< of the Newton step taken (1/2^m after m retreats)
   double rest_mass_before = 0;  ///< M0 before the reset, and the change of M0 before it, for retreat()
   double m0_change_before = 1;
+  std::string model_note;  ///< why this step's sigma-model took less of the hole's delta (empty: as before)
 };
 
 class Star {
@@ -84,7 +86,8 @@ class Star {
   int bernoulli_reset(const StarConstants& next, const std::vector<double>& alpha, const std::vector<double>& phi);
   /// delta = Mhat_BH/(2 dhat), the hole's conformal factor across the star (0 without a hole).
   double hole_delta() const;
-  /// The model's sigma: sigma (1 + delta)^2 (physics-notes §4.5, "with a black hole present").
+  /// The model's sigma: sigma (1 + w delta)^2 (physics-notes §4.5, "with a black hole present"),
+  /// w = delta_weight_.
   double model_sigma(double sigma) const;
   /// Omegahat from Kepler, sqrt(Mhat_tot / dhat^3) (hatted; physics-notes §4.7).
   double kepler_omega() const;
@@ -98,6 +101,11 @@ class Star {
   std::shared_ptr<StarFluid> fluid_;
   const Puncture* hole_;
   double m0_change_ = 1;  ///< |d M0 / M0| of the last reset
+  /// How much of the hole's delta the sigma-model takes: 1, halved (then 0) each time the corotating
+  /// Newton solve fails with it. The model only shapes the path (at the fixed point its change
+  /// vanishes), and delta = Mhat/(2 dhat) of a close hole can put sigma (1 + delta)^2 over the
+  /// frozen-profile fold while the star itself is below it.
+  double delta_weight_ = 1;
   double undone_rest_mass_ = 0;  ///< M0 before the step retreat() undid (0: none), for the next step
   std::vector<StepReport> history_;
   int rho0_, press_, enthalpy_, chi_, eta_, puncture_phi_;

@@ -19,6 +19,7 @@ void Star::save(core::CheckpointWriter& out) const {
   out.put("state", now);
   // What a warm start of another rho_max scales the constants from (warm_start below).
   out.put("rho_max", settings_.rho_max);
+  out.put("delta_weight", delta_weight_);
   // Every report as its numbers (iteration, matter_points and converged are small integers, exact
   // in a double).
   std::vector<double> reports;
@@ -38,6 +39,7 @@ void Star::restore(const core::CheckpointReader& in) {
   if (now.size() != constants_size + 3 || reports.size() % report_size != 0)
     throw core::InputError("hydro_corotating: the checkpoint's star state is malformed");
   fluid_->constants = constants_at(now.data());
+  delta_weight_ = in.real("delta_weight");
   fluid_->converged = now[4] != 0;
   m0_change_ = now[5];
   undone_rest_mass_ = now[6];

@@ -141,7 +141,17 @@ def run_one(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = True) -
     # only ever removes what bhnsid wrote there.
     cmd = command(bhnsid, spec, c, run_dir, source) + (["--force"] if run_dir.exists() else [])
     with open(str(run_dir) + ".out", "w") as log:
-        subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, env=dict(os.environ))
+        r = subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, env=dict(os.environ))
+        if r.returncode != 0 and source is not None:
+            # The neighbour refused as a start (another build since, a damaged checkpoint), or the
+            # run failed from it (a 25 % step in rho_max can send the first Newton step over the
+            # sigma-model's fold where the cold start, below it, converges): from the run's own
+            # initial guess instead; the log keeps both.
+            print(f"bhnsid sequence: the run from {source} ended with exit {r.returncode}; starting cold", file=log,
+                  flush=True)
+            subprocess.run(command(bhnsid, spec, c, run_dir) + (["--force"] if run_dir.exists() else []), stdout=log,
+                           stderr=subprocess.STDOUT, env=dict(os.environ))
+            source = None
     outcome = read_outcome(c, run_dir)
     if outcome.status == "converged":
         # A run's checkpoints (two of 2.5 GB at n = 256) serve only the next run of its chain: gone
