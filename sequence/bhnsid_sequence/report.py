@@ -7,6 +7,7 @@ import json
 import os
 from pathlib import Path
 
+from .paper import comparison
 from .pipeline import MINIMA
 
 TABLE_I = ["E_b", "J_over_M0sq", "Omega_M0", "rho_max"]
@@ -113,6 +114,9 @@ def write_all(spec, outcomes, table, found, errors, errors_at_points, out_dir: P
         md, text = tables(spec, errors, minimum)
         write_atomic(out_dir / f"table_min_{minimum}.md", md)
         write_atomic(out_dir / f"table_min_{minimum}.csv", text)
+    paper = comparison(spec.mass_ratio, spec.targets, errors, spec.grids[0].name)
+    if paper:
+        write_atomic(out_dir / "paper_comparison.md", paper)
     failed = [r for r in runs if r["status"] != "converged"]
     lines = [f"| {r['dir']} | {r['status']} | {r['message'][:200]} |" for r in failed]
     write_atomic(out_dir / "failures.md", "| configuration | status | cause |\n|---|---|---|\n" + "\n".join(lines) + "\n")

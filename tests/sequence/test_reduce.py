@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "sequence"))
+from bhnsid_sequence.paper import PAPER, comparison  # noqa: E402
 from bhnsid_sequence.reduce import error_model, parabola_minimum, quadratic_at, spline_at  # noqa: E402
 
 
@@ -76,6 +77,30 @@ class ErrorModelTest(unittest.TestCase):
             error_model([0.03, 0.015, 0.0075], [1.92, 1.92, 1.92], [1, 2, 3])
         with self.assertRaisesRegex(ValueError, "exactly three"):
             error_model([0.03, 0.015], [1.92, 1.2], [1, 2])
+
+
+class PaperComparison(unittest.TestCase):
+    def isco(self, mu, shift=0.0):
+        return {f"{t:g}": {"E_b": {q: {"value": v + shift * e, "error": e} for q, (v, e) in row.items()}}
+                for t, row in PAPER[mu].items()}
+
+    def test_the_paper_against_itself_is_at_distance_zero_and_one_sigma_is_reported(self):
+        text = comparison(1.0, [0.6, 0.75, 0.9], self.isco(1.0), "n256")
+        self.assertIn("| E_b | -0.00283 ± 0.00012 | -0.00283 ± 0.00012 | 0.00 |", text)
+        # Ours one own error bar off: sqrt(2) combined, distance 1/sqrt(2).
+        shifted = comparison(1.0, [0.6], self.isco(1.0, 1.0), "n256")
+        self.assertIn("| 0.71 |", shifted)
+
+    def test_mu3_e_b_is_compared_after_the_offset_of_physics_notes_10_2(self):
+        isco = self.isco(3.0)
+        isco["0.75"]["E_b"]["E_b"]["value"] = -0.94738 + 0.93848  # the stated definition: -0.0089
+        text = comparison(3.0, [0.75, 0.85], isco, "n256")
+        self.assertIn("physics-notes §10.2) | -0.0089 ± 0.00053 | -0.0089 ± 0.00053 | 0.00 |", text)
+
+    def test_missing_minima_are_said_not_invented(self):
+        text = comparison(1.0, [0.6], {"0.6": {"E_b": {"reason": "no interior minimum"}, "J": {"reason": "x"}}}, "g")
+        self.assertIn("no interior minimum", text)
+        self.assertIsNone(comparison(2.0, [0.6], {}, "g"))
 
 
 if __name__ == "__main__":
