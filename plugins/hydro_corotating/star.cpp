@@ -45,7 +45,11 @@ double Star::model_sigma(double sigma) const {
 
 double Star::kepler_omega() const {
   const StarConstants& c = fluid_->constants;
-  const double m_ns = family_.adm_mass_from_rest_mass(fluid_->rest_mass()) / c.sigma;
+  // Only the first step's start for Omegahat: the initial TOV profile in the binary's fields can hold
+  // more than the family's maximum rest mass (rho_max = 0.155, x_a = 0.5 at n = 32: 0.201 > 0.180),
+  // where M_NS(M0) has no answer; the heaviest star's mass is start enough.
+  const double m0 = std::min(fluid_->rest_mass(), family_.maximum_rest_mass_star().rest_mass);
+  const double m_ns = family_.adm_mass_from_rest_mass(m0) / c.sigma;
   const double d = c.x_c - hole_->position()[0];
   return std::sqrt((hole_->bare_mass() + m_ns) / (d * d * d));
 }
