@@ -8,7 +8,7 @@ FUZZ_SECONDS ?= 30
 
 CMAKE_FLAGS = -G Ninja -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps build run test test-viz test-asan fuzz fuzz-check clean install
+.PHONY: all deps build run test test-viz test-slurm test-asan fuzz fuzz-check clean install
 
 all: build
 
@@ -33,6 +33,14 @@ test-viz: build
 	@scripts/install-deps.sh --viz
 	mkdir -p $(BUILD)/test-viz
 	/usr/bin/python3 tests/viz/check_viz.py $(BUILD)/bin/bhnsid . $(BUILD)/test-viz
+
+# A tiny sequence on a real one-node SLURM cluster (slurmctld, slurmd, munge on this machine, as
+# root) against the local pool (tests/slurm/test_slurm.py); the cluster is stopped afterwards.
+test-slurm: build
+	@scripts/install-deps.sh --slurm
+	scripts/slurm-local.sh start
+	/usr/bin/python3 tests/slurm/test_slurm.py $(BUILD)/bin . $(BUILD)/test-slurm; rc=$$?; \
+		scripts/slurm-local.sh stop; exit $$rc
 
 $(BUILD_ASAN)/build.ninja: | deps
 	cmake -S . -B $(BUILD_ASAN) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBHNSID_SANITIZE=ON

@@ -2,7 +2,8 @@
 # Installs the Debian 12 packages bhnsid needs, and only those that are missing: `apt-get update`
 # runs once, and not at all when everything is already there. Safe to run any number of times.
 # `--bench` adds what the peer comparison (bench/compare_hypre.sh) needs: hypre and MPI; `--viz`
-# what `make test-viz` needs: ParaView and a virtual X display.
+# what `make test-viz` needs: ParaView and a virtual X display; `--slurm` what `make test-slurm` needs:
+# SLURM's controller, node daemon and client, and munge (scripts/slurm-local.sh runs them).
 set -euo pipefail
 
 packages=(
@@ -18,7 +19,8 @@ for option in "$@"; do
   case "$option" in
     --bench) packages+=(libhypre-dev libopenmpi-dev openmpi-bin) ;;  # the hypre peer of bench/compare_hypre.sh
     --viz) packages+=(paraview python3-paraview xvfb xauth) ;;  # make test-viz: pvbatch and its Python modules (a Recommends, which --no-install-recommends skips), on a virtual X display
-    *) echo "install-deps: unknown option $option (expected --bench or --viz)" >&2; exit 2 ;;
+    --slurm) packages+=(slurm-wlm munge) ;;  # make test-slurm: slurmctld + slurmd + munge on this machine
+    *) echo "install-deps: unknown option $option (expected --bench, --viz or --slurm)" >&2; exit 2 ;;
   esac
 done
 

@@ -1,5 +1,6 @@
-"""bhnsid sequence FILE.yaml [--jobs N] [--output DIR] [--reduce-only]: every configuration as an
-ordinary run, then the splines, minima, error model, tables and figures (sequence/README.md)."""
+"""bhnsid sequence FILE.yaml [--jobs N] [--output DIR] [--reduce-only] [--slurm [--emit-only]]: every
+configuration as an ordinary run, then the splines, minima, error model, tables and figures
+(sequence/README.md)."""
 import argparse
 import os
 import shutil
@@ -8,7 +9,8 @@ from pathlib import Path
 
 from .pipeline import at_targets, error_bars, minima, point_errors
 from .report import write_all
-from .runs import configurations, read_outcome, run_all
+from .runs import configurations, read_outcome, run_all, run_one
+from .slurm import Options, SlurmError, submit, task_config, write_scripts
 from .spec import SpecError, read_spec
 
 MARKER = ".bhnsid-sequence"
@@ -23,11 +25,22 @@ def main(argv=None) -> int:
     p.add_argument("--cold", action="store_true",
                    help="start every run from its own initial guess (no warm start from a converged neighbour)")
     p.add_argument("--bhnsid", help="the bhnsid executable (default: the one beside this tool)")
+    p.add_argument("--slurm", action="store_true",
+                   help="submit the runs as SLURM job arrays (one per rho_max rank) and the reduction as a job after them")
+    p.add_argument("--emit-only", action="store_true", help="with --slurm: write the batch scripts, submit nothing")
+    p.add_argument("--partition", help="with --slurm: the partition of every job")
+    p.add_argument("--time", help="with --slurm: the time limit of every run task (e.g. 2:00:00)")
+    p.add_argument("--account", help="with --slurm: the account of every job")
+    p.add_argument("--task", help=argparse.SUPPRESS)  # TASK_LIST:INDEX, one run of a SLURM array task
     args = p.parse_args(argv)
     try:
         spec = read_spec(args.file)
         if args.jobs < 1:
             raise SpecError(f"--jobs: expected at least 1, got {args.jobs}")
+        if args.emit_only and not args.slurm:
+            raise SpecError("--emit-only: only with --slurm")
+        if args.slurm and args.reduce_only:
+            raise SpecError("--slurm and --reduce-only exclude each other")
     except SpecError as e:
         print(f"bhnsid: error: {e}", file=sys.stderr)
         return 2
@@ -39,6 +52,7 @@ def main(argv=None) -> int:
             print(f"bhnsid: error: --bhnsid: no bhnsid executable at {bhnsid} or on PATH", file=sys.stderr)
             return 2
         bhnsid = found
+    bhnsid = str(Path(bhnsid).resolve())  # batch scripts run it from elsewhere
     root = Path(args.output) if args.output else Path("runs") / Path(args.file).stem
     # A folder this tool did not make is never written into (its runs would mix with others').
     if root.exists() and not (root / MARKER).exists() and any(root.iterdir()):
@@ -47,7 +61,34 @@ def main(argv=None) -> int:
         return 2
     root.mkdir(parents=True, exist_ok=True)
     (root / MARKER).write_text(f"{Path(args.file).resolve()}\n")
-    if args.reduce_only:
+    if args.task:
+        try:
+            c = task_config(spec, args.task)
+        except SlurmError as e:
+            print(f"bhnsid: error: {e}", file=sys.stderr)
+            return 2
+        o = run_one(bhnsid, spec, root, c, warm=not args.cold)
+        print(f"sequence: {c.relative_dir}: {o.status}" + (f" ({o.message})" if o.message else ""))
+        return 0 if o.status == "converged" else 1
+    if args.slurm:
+        try:
+            tool = str(Path(sys.argv[0]).resolve())
+            jobs = write_scripts(tool, bhnsid, spec, root,
+                                 Options(partition=args.partition, time=args.time, account=args.account, cold=args.cold))
+            runs = sum(j["tasks"] for j in jobs if j["kind"] == "runs")
+            if runs == 0 and not args.emit_only:
+                print("sequence: every configuration has converged: nothing to submit; reducing here")
+            else:
+                print(f"sequence: {runs} run(s) in {len(jobs) - 1} job array(s) and the reduction; scripts in {root}/slurm")
+                ids = submit(jobs, args.emit_only)
+                if not args.emit_only:
+                    print(f"sequence: watch with `squeue -j {','.join(ids)}`; the tables appear in {root} when job "
+                          f"{ids[-1]} has run")
+                return 0
+        except SlurmError as e:
+            print(f"bhnsid: error: {e}", file=sys.stderr)
+            return 2
+    if args.reduce_only or args.slurm:
         outcomes = [read_outcome(c, root / c.relative_dir) for c in configurations(spec)]
     else:
         outcomes = run_all(bhnsid, spec, root, args.jobs, warm=not args.cold)
