@@ -21,7 +21,10 @@ node=$(hostname -s)
 
 die() { echo "slurm-local: $*" >&2; exit 2; }
 
-[ "$(id -u)" -eq 0 ] || die "must run as root (it writes $conf and starts daemons)"
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null 2>&1 || die "must run as root (it writes $conf and starts daemons); no sudo either"
+  exec sudo "$0" "$@"
+fi
 case "$action" in start|stop|status) ;; *) die "usage: scripts/slurm-local.sh start|stop|status" ;; esac
 for cmd in munged slurmctld slurmd sinfo scontrol; do
   command -v "$cmd" >/dev/null 2>&1 || [ -x "/usr/sbin/$cmd" ] ||
@@ -119,7 +122,10 @@ munge -n </dev/null | unmunge >/dev/null 2>&1 || die "munge does not authenticat
 
 for name in slurmctld slurmd; do
   if running "$name" "/run/$name.pid" && [ "$changed" = 1 ]; then
-    kill "$(cat "/run/$name.pid")"; sleep 1
+    pid=$(cat "/run/$name.pid")
+    kill "$pid"
+    for _ in $(seq 100); do [ -d "/proc/$pid" ] || break; sleep 0.1; done
+    [ -d "/proc/$pid" ] && die "$name (pid $pid) did not stop within 10 s for the new configuration"
   fi
   if ! running "$name" "/run/$name.pid"; then
     if [ "$name" = slurmd ]; then slurmd -N "$node"; else slurmctld; fi

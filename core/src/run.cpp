@@ -396,8 +396,11 @@ RunResult run(const Configuration& config, const RunOptions& options) {
       log.info("warm start from {} (iteration {}{}){}", warm.file->path().string(), warm.iteration,
                warm.converged ? ", converged" : ", not converged",
                warm.changed.empty() ? "" : fmt::format(": {}", warm.changed));
-    } catch (const std::exception& e) {
+    } catch (const InputError& e) {  // a section its plugin cannot read
       exec.fail(fmt::format("--warm-start: {}", e.what()), exit_input);
+      ok = false;
+    } catch (const std::exception& e) {  // a plugin that could not rebuild its state from it
+      exec.fail(fmt::format("--warm-start: {}", e.what()), exit_run_failed);
       ok = false;
     }
     warm.file.reset();

@@ -203,7 +203,10 @@ StepReport Star::step(double fraction) {
         omega = r.omega_hat;
         break;
       } catch (const core::RunFailure& e) {
-        if (delta_weight_ == 0) throw;
+        if (delta_weight_ == 0 || hole_delta() == 0) {
+          if (report.model_note.empty()) throw;
+          throw core::RunFailure(fmt::format("{} (after: {})", e.what(), report.model_note));
+        }
         const double was = delta_weight_;
         delta_weight_ = delta_weight_ > 0.2 ? 0.5 * delta_weight_ : 0.0;
         report.model_note += fmt::format("{}the sigma-model with {:.3g} of the hole's delta failed ({}); now {:.3g}",

@@ -8,9 +8,9 @@ import sys
 from pathlib import Path
 
 from .pipeline import at_targets, error_bars, minima, point_errors
-from .report import write_all
+from .report import write_all, write_atomic
 from .runs import configurations, read_outcome, run_all, run_one
-from .slurm import Options, SlurmError, submit, task_config, write_scripts
+from .slurm import Options, SlurmError, check_not_queued, submit, task_config, write_scripts
 from .spec import SpecError, read_spec
 
 MARKER = ".bhnsid-sequence"
@@ -60,7 +60,8 @@ def main(argv=None) -> int:
               file=sys.stderr)
         return 2
     root.mkdir(parents=True, exist_ok=True)
-    (root / MARKER).write_text(f"{Path(args.file).resolve()}\n")
+    if not (root / MARKER).exists():  # SLURM's array tasks all pass here: written once
+        write_atomic(root / MARKER, f"{Path(args.file).resolve()}\n")
     if args.task:
         try:
             c = task_config(spec, args.task)
@@ -73,6 +74,8 @@ def main(argv=None) -> int:
     if args.slurm:
         try:
             tool = str(Path(sys.argv[0]).resolve())
+            if not args.emit_only and shutil.which("squeue"):
+                check_not_queued(spec, root)
             jobs = write_scripts(tool, bhnsid, spec, root,
                                  Options(partition=args.partition, time=args.time, account=args.account, cold=args.cold))
             runs = sum(j["tasks"] for j in jobs if j["kind"] == "runs")

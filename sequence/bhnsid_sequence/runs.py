@@ -142,7 +142,9 @@ def run_one(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = True) -
     cmd = command(bhnsid, spec, c, run_dir, source) + (["--force"] if run_dir.exists() else [])
     with open(str(run_dir) + ".out", "w") as log:
         r = subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, env=dict(os.environ))
-        if r.returncode != 0 and source is not None:
+        # Exit 1 (the run failed) or 2 (the start refused); a signal (exit >= 128, or negative: the
+        # user's Ctrl-C, a job's time limit) stops here instead of starting the run again.
+        if r.returncode in (1, 2) and source is not None:
             # The neighbour refused as a start (another build since, a damaged checkpoint), or the
             # run failed from it (a 25 % step in rho_max can send the first Newton step over the
             # sigma-model's fold where the cold start, below it, converges): from the run's own
@@ -151,14 +153,14 @@ def run_one(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = True) -
                   flush=True)
             subprocess.run(command(bhnsid, spec, c, run_dir) + (["--force"] if run_dir.exists() else []), stdout=log,
                            stderr=subprocess.STDOUT, env=dict(os.environ))
-            source = None
     outcome = read_outcome(c, run_dir)
     if outcome.status == "converged":
         # A run's checkpoints (two of 2.5 GB at n = 256) serve only the next run of its chain: gone
-        # once that one has converged from them, or at once for the last of a chain.
+        # once that one has converged (from them or cold), at once for the last of a chain and when
+        # nothing warm-starts (--cold).
         if source is not None:
             drop_checkpoints(source)
-        if chain(spec, c)[-1] == c:
+        if chain(spec, c)[-1] == c or not warm:
             drop_checkpoints(run_dir)
     return outcome
 

@@ -3,6 +3,7 @@ every chain of equal grid and xhat_A, so each run starts after the neighbour it 
 --dependency=afterany on array r - 1), and the reduction as a job after all of them. Every task runs
 `bhnsid-sequence FILE --output ROOT --task LIST:K`, the same code as the local pool (runs.run_one), so
 a resubmission skips what converged and the cluster's results are the local pool's."""
+import hashlib
 import math
 import os
 import re
@@ -51,7 +52,11 @@ def memory_request_mib(bhnsid: str, spec: Spec, c: Config) -> int:
         cmd += ["--set", f"{k}={v}"]
     r = subprocess.run(cmd, capture_output=True, text=True)
     m = re.search(r"memory: estimated ([0-9.]+) (B|KiB|MiB|GiB|TiB)", r.stdout)
-    if r.returncode != 0 or not m:
+    if not m:
+        # A submit host smaller than a compute node refuses the run for its own memory: the estimate
+        # is in that refusal.
+        m = re.search(r"the run needs an estimated ([0-9.]+) (B|KiB|MiB|GiB|TiB), more than", r.stderr)
+    if not m:
         raise SlurmError(f"{spec.file}: bhnsid check refused {c.relative_dir}: {(r.stderr or r.stdout).strip()[:300]}")
     return int(math.ceil(1.5 * float(m.group(1)) * _UNITS[m.group(2)] + 64))
 
@@ -69,9 +74,39 @@ def _header(name: str, out: str, cpus: int, mem: int, opt: Options, array: Optio
     return lines
 
 
+def job_prefix(spec: Spec, root: Path) -> str:
+    """The job names of this sequence directory: bhnsid-seq-STEM-HASH (HASH of the directory)."""
+    digest = hashlib.sha1(str(root.resolve()).encode()).hexdigest()[:8]
+    stem = re.sub(r"[^A-Za-z0-9_.-]", "_", spec.file.stem)
+    return f"bhnsid-seq-{stem}-{digest}"
+
+
+def check_paths(root: Path) -> None:
+    """#SBATCH lines are split at blanks and give % and quotes meanings of their own."""
+    bad = set(str(root.resolve())) & set(" \t\n\"'\\%")
+    if bad:
+        raise SlurmError(f"--output {root}: the sequence directory's path holds {''.join(sorted(bad))!r}, which SLURM's "
+                         f"#SBATCH --output lines cannot carry; choose a directory without it")
+
+
+def check_not_queued(spec: Spec, root: Path) -> None:
+    """A resubmission rewrites the task lists that queued array tasks still read: refused while any
+    job of this sequence directory is queued or running."""
+    q = subprocess.run(["squeue", "-h", "-o", "%i %j"], capture_output=True, text=True)
+    if q.returncode != 0:
+        raise SlurmError(f"squeue: {q.stderr.strip() or 'failed'} (exit {q.returncode})")
+    prefix = job_prefix(spec, root)
+    mine = [line.split()[0] for line in q.stdout.splitlines() if len(line.split()) > 1 and line.split()[1].startswith(prefix)]
+    if mine:
+        raise SlurmError(f"{root}: jobs of this sequence are still queued or running ({', '.join(sorted(set(mine)))}); "
+                         f"wait for them or scancel them before submitting again")
+
+
 def write_scripts(tool: str, bhnsid: str, spec: Spec, root: Path, opt: Options) -> List[Dict]:
     """ROOT/slurm/rankR.sh with its task list rankR.tasks per non-empty rank, and reduce.sh;
     returns [{"script", "kind", "tasks"}] in submission order."""
+    check_paths(root)
+    prefix = job_prefix(spec, root)
     folder = root / "slurm"
     folder.mkdir(parents=True, exist_ok=True)
     cpus = spec.threads if spec.threads > 0 else 1
@@ -88,7 +123,7 @@ def write_scripts(tool: str, bhnsid: str, spec: Spec, root: Path, opt: Options) 
         tasks = folder / f"rank{r}.tasks"
         write_atomic(tasks, "".join(f"{c.relative_dir}\n" for c in configs))
         cmd = common + (["--cold"] if opt.cold else [])
-        text = _header(f"bhnsid-seq-{spec.file.stem}-rho{r}", str((folder / f"rank{r}_%a.out").resolve()), cpus, mem, opt,
+        text = _header(f"{prefix}-rho{r}", str((folder / f"rank{r}_%a.out").resolve()), cpus, mem, opt,
                        len(configs))
         text += [f"# rho_max = {spec.rho_max[r]:g} of every chain: {len(configs)} run(s); after rank {r - 1} (warm starts)",
                  "exec " + " ".join(shlex.quote(w) for w in cmd) + " --task " + shlex.quote(f"{tasks.resolve()}:")
@@ -97,7 +132,7 @@ def write_scripts(tool: str, bhnsid: str, spec: Spec, root: Path, opt: Options) 
         write_atomic(script, "\n".join(text) + "\n")
         os.chmod(script, 0o755)
         jobs.append({"script": script, "kind": "runs", "tasks": len(configs)})
-    reduce_text = _header(f"bhnsid-seq-{spec.file.stem}-reduce", str((folder / "reduce.out").resolve()), 1, 1024, opt)
+    reduce_text = _header(f"{prefix}-reduce", str((folder / "reduce.out").resolve()), 1, 1024, opt)
     reduce_text += ["# splines, minima, error model, tables and figures of whatever converged",
                     "exec " + " ".join(shlex.quote(w) for w in common + ["--reduce-only"])]
     script = folder / "reduce.sh"

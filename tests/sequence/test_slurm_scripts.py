@@ -69,6 +69,10 @@ echo "$@" >> {log}
 echo $((101 + n))
 """)
 os.chmod(fake / "sbatch", 0o755)
+queue = work / "queue.txt"
+queue.write_text("")
+(fake / "squeue").write_text(f"#!/bin/sh\ncat {queue}\n")
+os.chmod(fake / "squeue", 0o755)
 env = dict(os.environ, PATH=f"{fake}:{os.environ['PATH']}")
 s = subprocess.run([bhnsid, "sequence", str(spec), "--output", str(work / "sub"), "--slurm"], capture_output=True, text=True,
                    env=env)
@@ -81,6 +85,18 @@ check(calls[1].startswith("--parsable --dependency=afterany:101 ") and calls[2].
 check(calls[3].startswith("--parsable --dependency=afterany:101:102:103 ") and calls[3].endswith("reduce.sh"),
       "the reduction after every array")
 check("job 104" in s.stdout and "squeue -j 101,102,103,104" in s.stdout, "job ids reported")
+
+name = re.search(r"#SBATCH --job-name=(\S+)", (work / "sub" / "slurm" / "rank0.sh").read_text()).group(1)
+check(name.startswith("bhnsid-seq-tiny-") and name.endswith("-rho0"), f"job names carry the sequence and its directory ({name})")
+queue.write_text(f"101_2 {name}\n")
+busy = subprocess.run([bhnsid, "sequence", str(spec), "--output", str(work / "sub"), "--slurm"], capture_output=True,
+                      text=True, env=env)
+check(busy.returncode == 2 and "still queued or running (101_2)" in busy.stderr,
+      "a resubmission while the sequence's jobs are queued is refused (their task lists would change)")
+queue.write_text("")
+spaced = subprocess.run([bhnsid, "sequence", str(spec), "--output", str(work / "a b"), "--slurm", "--emit-only"],
+                        capture_output=True, text=True)
+check(spaced.returncode == 2 and "#SBATCH --output" in spaced.stderr, "a directory SLURM's #SBATCH lines cannot carry is refused")
 
 # One task of an array, as slurmd would start it: runs that configuration exactly as the local pool.
 task = subprocess.run([bhnsid, "sequence", str(spec), "--output", str(work / "sub"), "--task",

@@ -107,9 +107,9 @@ class PluginBuilder {
 
   /// `bhnsid run FILE --warm-start DIR`: after INITIAL, `fn` reads this plugin's section of the
   /// newest checkpoint of another run DIR of the same build whose parameters differ only in
-  /// steerable ones (a neighbour of a sequence). It takes what is a good start for these parameters
-  /// (fields, constants) and leaves what they decide (a star's mass, a convergence history) as
-  /// INITIAL made it. The loop then starts at iteration 1.
+  /// steerable ones (the previous run of a parameter scan). It takes what is a good start for these
+  /// parameters and leaves what they decide (and any convergence history) as INITIAL made it. The
+  /// loop then starts at iteration 1.
   void warm_start(CheckpointRestoreFn fn);
 
  private:

@@ -14,8 +14,9 @@ struct RunOptions {
   std::filesystem::path run_directory;
   bool force = false;
   bool resume = false;  ///< continue the run in run_directory from its newest checkpoint (bhnsid run --resume)
-  /// A converged run of the same build whose parameters differ only in steerable ones: each plugin
-  /// that declared a warm start takes its state from that run's newest checkpoint (bhnsid run --warm-start).
+  /// A run of the same build (converged or not: the log says which) whose parameters differ only in
+  /// steerable ones: each plugin that declared a warm start takes its state from that run's newest
+  /// checkpoint (bhnsid run --warm-start).
   std::filesystem::path warm_start;
   std::string command_line;
   bool verbose = false;  ///< detail lines (per multigrid cycle, per plugin step) on the terminal too
