@@ -14,6 +14,14 @@ inline ProcessResult bhnsid_with_test_plugins(std::vector<std::string> args, con
   return run_bhnsid(args, cwd, file_size_limit);
 }
 
+/// bhnsid run PARFILE --output OUT EXTRA... against the test plugins.
+inline ProcessResult run_parfile_with_test_plugins(const std::filesystem::path& parfile, const std::filesystem::path& out,
+                                                   std::vector<std::string> extra = {}) {
+  std::vector<std::string> args = {"run", parfile.string(), "--output", out.string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return bhnsid_with_test_plugins(args);
+}
+
 /// A minimal valid parameter file for tp_counter (+ extra YAML appended).
 inline std::string counter_parfile(const std::string& extra = "") {
   return "plugins: [tp_counter]\ntp_counter:\n  needed: 2.0\n" + extra;

@@ -32,9 +32,7 @@ struct KillAt {
 };
 
 ProcessResult run(const fs::path& parfile, const fs::path& out, std::vector<std::string> extra = {}) {
-  std::vector<std::string> args = {"run", parfile.string(), "--output", out.string()};
-  args.insert(args.end(), extra.begin(), extra.end());
-  return bhnsid_with_test_plugins(args);
+  return run_parfile_with_test_plugins(parfile, out, std::move(extra));
 }
 
 std::string fmt_checkpoint(int iteration) {

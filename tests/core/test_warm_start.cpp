@@ -23,9 +23,7 @@ const char* const parfile_text =
     "  checkpoint_overhead: 1.0e9\n";
 
 ProcessResult run(const fs::path& parfile, const fs::path& out, std::vector<std::string> extra = {}) {
-  std::vector<std::string> args = {"run", parfile.string(), "--output", out.string()};
-  args.insert(args.end(), extra.begin(), extra.end());
-  return bhnsid_with_test_plugins(args);
+  return run_parfile_with_test_plugins(parfile, out, std::move(extra));
 }
 
 json summary(const fs::path& run_dir) { return json::parse(read_file(run_dir / "summary.json")); }

@@ -6,22 +6,15 @@ from `bhnsid check`'s estimate; --cold forwarded; bad flags refused. The real cl
 usage: test_slurm_scripts.py BUILD_BIN SOURCE_DIR WORK_DIR"""
 import os
 import re
-import shutil
 import subprocess
 import sys
 from pathlib import Path
 
-bin_dir, source, work = (Path(a).resolve() for a in sys.argv[1:4])
-shutil.rmtree(work, ignore_errors=True)
-work.mkdir(parents=True)
-bhnsid = str(bin_dir / "bhnsid")
-failures = []
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "sequence"))
+from checklist import Checklist, arguments  # noqa: E402
 
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
+bin_dir, source, work, bhnsid = arguments()
+check = Checklist()
 
 
 spec = work / "tiny.yaml"
@@ -118,4 +111,4 @@ no = subprocess.run([bhnsid, "sequence", str(spec), "--output", str(work / "y"),
 check(no.returncode == 2 and "no sbatch" in no.stderr, "no sbatch: one error naming it")
 e = subprocess.run([bhnsid, "sequence", str(spec), "--emit-only"], capture_output=True, text=True, cwd=work)
 check(e.returncode == 2 and "--emit-only" in e.stderr, "--emit-only without --slurm is refused")
-sys.exit(1 if failures else 0)
+check.exit()

@@ -6,15 +6,14 @@ written; a second call skips every converged run; bad input is one error line.
 
 usage: test_tiny_sequence.py BUILD_BIN SOURCE_DIR WORK_DIR"""
 import json
-import shutil
 import subprocess
 import sys
 from pathlib import Path
 
-bin_dir, source, work = (Path(a).resolve() for a in sys.argv[1:4])
-shutil.rmtree(work, ignore_errors=True)
-work.mkdir(parents=True)
-bhnsid = str(bin_dir / "bhnsid")
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "sequence"))
+from checklist import Checklist, arguments  # noqa: E402
+
+bin_dir, source, work, bhnsid = arguments()
 
 spec = work / "tiny.yaml"
 spec.write_text(f"""sequence:
@@ -26,13 +25,7 @@ spec.write_text(f"""sequence:
   grids: [{{n: 32, dx: 0.12}}, {{n: 28, dx: 0.137142857142857}}, {{n: 24, dx: 0.12}}]
   threads: 1
 """)
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
+check = Checklist()
 
 
 r = subprocess.run([bhnsid, "sequence", str(spec), "--output", str(work / "seq"), "--jobs", "2"],
@@ -80,4 +73,4 @@ check(b.returncode == 2 and b.stderr.count("\n") == 1 and "sequence.base" in b.s
 f = subprocess.run([bhnsid, "sequence", str(spec), "--output", str(work / "foreign")], capture_output=True, text=True)
 check(f.returncode == 2 and "not a sequence directory" in f.stderr, "a foreign folder is refused")
 
-sys.exit(1 if failures else 0)
+check.exit()

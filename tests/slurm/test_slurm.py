@@ -6,23 +6,16 @@ the same operations in the same order, so to the last bit).
 
 usage: test_slurm.py BUILD_BIN SOURCE_DIR WORK_DIR"""
 import json
-import shutil
 import subprocess
 import sys
 import time
 from pathlib import Path
 
-bin_dir, source, work = (Path(a).resolve() for a in sys.argv[1:4])
-shutil.rmtree(work, ignore_errors=True)
-work.mkdir(parents=True)
-bhnsid = str(bin_dir / "bhnsid")
-failures = []
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "sequence"))
+from checklist import Checklist, arguments  # noqa: E402
 
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what, flush=True)
-    if not ok:
-        failures.append(what)
+bin_dir, source, work, bhnsid = arguments()
+check = Checklist()
 
 
 spec = work / "tiny.yaml"
@@ -87,4 +80,4 @@ check((cluster / "table_min_E_b.md").read_text() == (local / "table_min_E_b.md")
 
 again = subprocess.run([bhnsid, "sequence", str(spec), "--output", str(cluster), "--slurm"], capture_output=True, text=True)
 check(again.returncode == 0 and "nothing to submit" in again.stdout, "a second --slurm finds every run converged: nothing submitted")
-sys.exit(1 if failures else 0)
+check.exit()

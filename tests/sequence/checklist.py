@@ -1,0 +1,27 @@
+"""What the sequence tool's end-to-end tests share: their three arguments (the build's bin folder,
+the source tree, a work folder made empty) and a list of named checks that all run and decide the
+exit status together."""
+import shutil
+import sys
+from pathlib import Path
+
+
+def arguments():
+    """BUILD_BIN SOURCE_DIR WORK_DIR from argv, WORK_DIR emptied; and the bhnsid executable."""
+    bin_dir, source, work = (Path(a).resolve() for a in sys.argv[1:4])
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    return bin_dir, source, work, str(bin_dir / "bhnsid")
+
+
+class Checklist:
+    def __init__(self):
+        self.failures = []
+
+    def __call__(self, ok, what):
+        print(("ok   " if ok else "FAIL ") + what, flush=True)
+        if not ok:
+            self.failures.append(what)
+
+    def exit(self):
+        sys.exit(1 if self.failures else 0)
