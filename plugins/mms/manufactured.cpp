@@ -21,7 +21,7 @@ ProblemSpec on_grid(ProblemSpec spec, const Grid& grid) {
   return spec;
 }
 
-void check_compatible(const Grid& grid, const ProblemSpec& p) {
+void check_compatible(const Grid& grid, const ProblemSpec& p, const Vec3& robin_centre) {
   const bool equatorial = grid.symmetry() == Symmetry::equatorial;
   if (p.problem == Problem::poisson && equatorial)
     throw InputError(
@@ -40,6 +40,15 @@ void check_compatible(const Grid& grid, const ProblemSpec& p) {
             "mms.ball_radius = {} about mms.ball_centre = ({}, {}, {}) reaches the faces of the cube |x_i| <= {}: "
             "the boundary conditions assume vacuum there",
             p.ball_radius, b[0], b[1], b[2], rc));
+    const Vec3& c = robin_centre;
+    if (equatorial && c[2] != 0)
+      throw InputError(fmt::format(
+          "mms.robin_centre = ({}, {}, {}) lies off the plane z = 0, which grid.symmetry = equatorial needs", c[0],
+          c[1], c[2]));
+    for (double x : c)
+      if (!(std::fabs(x) < rc))
+        throw InputError(fmt::format("mms.robin_centre = ({}, {}, {}) lies outside the cube |x_i| < {}", c[0], c[1],
+                                     c[2], rc));
   }
 }
 
@@ -85,7 +94,7 @@ Manufactured::Manufactured(Grid& grid, const Settings& settings)
     : grid_(grid), settings_(settings), exact_(on_grid(settings.problem, grid)) {
   settings_.problem = exact_.spec();
   const ProblemSpec& p = settings_.problem;
-  check_compatible(grid, p);
+  check_compatible(grid, p, settings_.robin_centre);
 
   const bool vector = p.problem == Problem::vector;
   const std::vector<TensorKind> kinds =
@@ -130,7 +139,7 @@ Manufactured::Manufactured(Grid& grid, const Settings& settings)
       OuterBoundary robin;
       robin.kind = OuterBoundary::Kind::robin;
       robin.u_inf = {0.0};
-      robin.centre = {0, 0, 0};
+      robin.centre = settings_.robin_centre;
       equations_.push_back(std::make_shared<ScalarEquation>(grid, spec("mms", 0, robin), 0.0));
       break;
     }

@@ -16,6 +16,7 @@ struct Settings {
   ProblemSpec problem;  ///< half_width is taken from the grid
   double excision_radius = 0;
   Vec3 excision_centre{};
+  Vec3 robin_centre{};  ///< of the ball problem's Robin rows
   double initial_guess = 0;
 };
 

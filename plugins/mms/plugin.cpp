@@ -39,6 +39,7 @@ Settings settings_from(const core::ParamSection& p) {
   s.problem.coupled_b = p.real("coupled_b");
   s.excision_radius = p.real("excision_radius");
   s.excision_centre = vec3(p.real_vector("excision_centre"));
+  s.robin_centre = vec3(p.real_vector("robin_centre"));
   s.initial_guess = p.real("initial_guess");
   return s;
 }
@@ -99,6 +100,11 @@ void declare(core::PluginBuilder& b) {
   b.real_vector("ball_centre")
       .doc("centre b of the ball; off the origin so that the boundary sees a dipole (z = 0 with equatorial symmetry)")
       .default_value(std::vector<double>{0.1, 0, 0})
+      .length(3);
+  b.real_vector("robin_centre")
+      .doc("centre of the ball problem's Robin condition (z = 0 with equatorial symmetry); at ball_centre the "
+           "condition is exact for the exterior solution, and near a face it puts held rows on the coarse levels")
+      .default_value(std::vector<double>{0, 0, 0})
       .length(3);
   b.real("coupled_a")
       .doc("coefficient a of w in the coupled problem's first equation (1/length^2); a b < 0 keeps the "

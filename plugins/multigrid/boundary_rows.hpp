@@ -73,9 +73,11 @@ struct RobinRows {
 };
 
 /// The rows of every face point of a level for a condition about `centre`; throws
-/// core::RunFailure when the centre is closer than 1.5 cells to a face. `two_point` forces the
+/// core::RunFailure when the centre is closer than 1.5 cells to a face point, except on a coarse
+/// level (`coarse`), where such a point's row is about the centre moved out along the face's normal
+/// to 1.5 cells (a coarse level carries only FAS corrections). `two_point` forces the
 /// first-order row of every level (kept to measure what the second-order one gains).
-RobinRows robin_stencils(const Level& lv, const std::array<double, 3>& centre, bool two_point);
+RobinRows robin_stencils(const Level& lv, const std::array<double, 3>& centre, bool two_point, bool coarse = false);
 
 /// One array whose face points obey the rows.
 struct RobinTarget {

@@ -19,45 +19,10 @@ namespace bhnsid::multigrid {
 
 using core::RunFailure;
 
-namespace {
-
-/// The distance from a Robin centre to the nearest outer face of a level (the z = 0 plane of
-/// equatorial symmetry is not a face).
-double face_distance(const Level& lv, const std::array<double, 3>& c) {
-  double d = std::numeric_limits<double>::infinity();
-  const int n[3] = {lv.nx, lv.ny, lv.nz};
-  for (int a = 0; a < 3; ++a) {
-    const double lo = lv.origin[static_cast<std::size_t>(a)], hi = lo + lv.dx * (n[a] - 1);
-    d = std::min(d, hi - c[static_cast<std::size_t>(a)]);
-    if (!(a == 2 && lv.z_symmetry)) d = std::min(d, c[static_cast<std::size_t>(a)] - lo);
-  }
-  return d;
-}
-
-/// How many levels the cycle can use: a coarse level on which some Robin centre lies within 1.5
-/// cells of a face cannot carry the boundary rows (the ray to the centre has no interior point), so
-/// the hierarchy is cut above the first such level. An off-centre star or a small r_c then solves
-/// directly on a finer coarsest level instead of failing.
-int usable_levels(const Grid& grid, const std::vector<EllipticEquation*>& equations) {
-  int levels = grid.num_levels();
-  for (EllipticEquation* eq : equations) {
-    const OuterBoundary b = eq->boundary();
-    if (b.kind != OuterBoundary::Kind::robin) continue;
-    for (int l = 1; l < levels; ++l)
-      if (face_distance(grid.level(l), b.centre) < 1.5 * grid.level(l).dx) {
-        levels = l;
-        break;
-      }
-  }
-  return levels;
-}
-
-}  // namespace
-
 FasSolver::FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations, Settings settings, core::Log log)
     : grid_(grid), settings_(settings), log_(std::move(log)) {
   if (equations.empty()) throw RunFailure("multigrid: no elliptic equation is registered (no equation.* service)");
-  levels_ = usable_levels(grid, equations);
+  levels_ = grid.num_levels();
   // The finest level's residual is formed, normed and restricted one equation at a time in one
   // shared array set (a single level keeps one per equation: its direct solve needs them all).
   const bool shared_fine_residual = levels_ > 1;
@@ -96,7 +61,7 @@ FasSolver::FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations
       if (known == row_centres_.end()) {
         row_centres_.push_back(s.boundary.centre);
         row_sets_.emplace_back();
-        for (int l = 0; l < levels_; ++l) row_sets_.back().push_back(robin_stencils(grid.level(l), s.boundary.centre, false));
+        for (int l = 0; l < levels_; ++l) row_sets_.back().push_back(robin_stencils(grid.level(l), s.boundary.centre, false, l > 0));
       }
     }
     if (s.rows >= 0)
@@ -105,17 +70,6 @@ FasSolver::FasSolver(Grid& grid, const std::vector<EllipticEquation*>& equations
     if (const std::string mask = eq->excision_mask(); !mask.empty()) s.mask = grid.mask_id(mask);
     for (const std::string& name : eq->coefficients()) s.coefficients.push_back(grid.field_id(name));
     slots_.push_back(std::move(s));
-  }
-  if (levels_ < grid.num_levels()) {
-    const Level& c = grid.level(levels_ - 1);
-    double rows = 0;
-    for (const Slot& s : slots_) rows += static_cast<double>(s.ncomp) * c.nx * c.ny * c.nz;
-    if (rows > max_coarse_rows)
-      throw RunFailure(fmt::format(
-          "multigrid: a Robin centre lies within 1.5 cells of a face on level {} (dx = {}), so the coarsest usable "
-          "level is {} ({} x {} x {} points, {:.0f} unknowns for the direct solve, more than the {:.0f} it is bounded "
-          "to); move the body towards the centre of the cube or enlarge the grid (grid.n, grid.dx)",
-          levels_, grid.level(levels_).dx, levels_ - 1, c.nx, c.ny, c.nz, rows, max_coarse_rows));
   }
   if (shared_fine_residual)
     fine_residual_ = grid.add_field("multigrid.fine_residual",

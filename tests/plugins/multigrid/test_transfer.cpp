@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <vector>
 
 #include "boundary_rows.hpp"
@@ -193,4 +194,21 @@ TEST_CASE("plugins.multigrid.robin_rows_the_same_on_any_number_of_threads", "[pl
     INFO(threads << " threads");
     CHECK_THROWS_WITH(robin_stencils(lv, close, false), Catch::Contains("face point (2, -0.125, 0.875) on level 0"));
   }
+  // On a coarse level the same nine points take the row about the centre moved out to 1.5 cells
+  // along the normal: one plane one cell in, its weights summing to s_1 = 1 - 1 / 1.5.
+  const RobinRows coarse = robin_stencils(lv, close, false, true);
+  std::set<std::ptrdiff_t> near, plane_in;
+  for (int k = 0; k < lv.nz; ++k)
+    for (int j = 0; j < lv.ny; ++j) {
+      plane_in.insert(lv.at(lv.nx - 2, j, k));
+      if (std::fabs(lv.y(j)) < 0.13 && std::fabs(lv.z(k) - 1.0) < 0.13) near.insert(lv.at(lv.nx - 1, j, k));
+    }
+  int moved = 0;
+  for (std::size_t r = 0; r < coarse.size(); ++r) {
+    if (!near.count(coarse.point[r])) continue;
+    ++moved;
+    CHECK(coarse.scale[r] == Approx(1.0 / 3.0));
+    for (std::size_t e = coarse.begin[r]; e < coarse.begin[r + 1]; ++e) CHECK(plane_in.count(coarse.index[e]) == 1);
+  }
+  CHECK(moved == 9);
 }
