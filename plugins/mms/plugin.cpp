@@ -103,7 +103,8 @@ void declare(core::PluginBuilder& b) {
       .length(3);
   b.real_vector("robin_centre")
       .doc("centre of the ball problem's Robin condition (z = 0 with equatorial symmetry); at ball_centre the "
-           "condition is exact for the exterior solution, and near a face it puts held rows on the coarse levels")
+           "condition is exact for the exterior solution, and near a face it moves the coarse levels' rows "
+           "(multigrid README)")
       .default_value(std::vector<double>{0, 0, 0})
       .length(3);
   b.real("coupled_a")
