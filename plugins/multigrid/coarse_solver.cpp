@@ -197,8 +197,16 @@ void CoarseSolver::solve(int level) {
     solver_.fill_ghosts(level);
     residual_vector(level, r);
     const double next = r.lpNorm<Eigen::Infinity>();
-    if (!std::isfinite(next))
-      throw core::StepFailure("multigrid: the coarsest-level Newton solve produced a non-finite residual");
+    if (!std::isfinite(next)) {
+      // Measured: a compact star's matter term turns a 5 x 5 x 3 coarsest level indefinite
+      // (docs/performance.md, mu_bn = 10), where a finer coarsest level converges.
+      const Level& lv = solver_.grid_.level(level);
+      throw core::StepFailure(fmt::format(
+          "multigrid: the coarsest-level Newton solve produced a non-finite residual (level {}: {} x {} x {} points, "
+          "dx = {}); a level this coarse may not represent the equations: grid.min_coarse_intervals (or "
+          "grid.max_levels) keeps the coarsest level finer",
+          level, lv.nx, lv.ny, lv.nz, lv.dx));
+    }
     const double ratio = next / norm;
     norm = next;
     if (ratio > 0.5) {

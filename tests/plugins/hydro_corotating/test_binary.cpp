@@ -184,3 +184,30 @@ TEST_CASE("plugins.hydro_corotating.paper_starts_stay_below_the_fold", "[plugins
     CHECK(r.err.find("fold") == std::string::npos);
   }
 }
+
+TEST_CASE("plugins.hydro_corotating.compact_star_needs_a_finer_coarsest_level", "[plugins][hydro_corotating][binary]") {
+  // A compact mu_bn = 10 star (xhat_A = 0.5, rho_max = 0.045, the (64, 0.04) grid of
+  // parfiles/sequences/mu10_half.yaml): on the default coarsest level of 4 intervals (5 x 5 x 3
+  // points, dx = 0.64) its coarse Hamiltonian problem turns indefinite at outer step 2, and the
+  // failure must name the level and the way out; with 8 intervals (dx = 0.32, the mu = 10 files'
+  // setting) the same start runs on to its iteration limit (measured: it converges in 66 steps).
+  TempDir dir;
+  auto run = [&](const char* intervals) {
+    return run_bhnsid({"run", (source_dir() / "parfiles" / "sequences" / "binary.yaml").string(), "--output",
+                       (dir.path() / intervals).string(), "--set", "puncture.mass_ratio=10", "--set",
+                       "hydro_corotating.x_a=0.5", "--set", "hydro_corotating.rho_max=0.045", "--set", "grid.n=64",
+                       "--set", "grid.dx=0.04", "--set", "run.threads=1", "--set", "run.max_iterations=10", "--set",
+                       std::string("grid.min_coarse_intervals=") + intervals});
+  };
+  const ProcessResult coarse = run("4");
+  INFO(coarse.err);
+  CHECK(coarse.exit_code == 1);
+  CHECK(coarse.err.find("coarsest-level Newton solve produced a non-finite residual (level 4: 5 x 5 x 3 points") !=
+        std::string::npos);
+  CHECK(coarse.err.find("grid.min_coarse_intervals") != std::string::npos);
+  const ProcessResult finer = run("8");
+  INFO(finer.err);
+  CHECK(finer.exit_code == 1);
+  CHECK(finer.err.find("run.max_iterations = 10") != std::string::npos);
+  CHECK(finer.err.find("non-finite") == std::string::npos);
+}

@@ -45,6 +45,15 @@ TEST_CASE("plugins.mms.setup_checks_the_grid", "[plugins][mms]") {
   Settings too_big = defaults(Problem::ball);
   too_big.problem.ball_radius = 0.95;
   CHECK_THROWS_WITH(Manufactured(half, too_big), Contains("mms.ball_radius = 0.95") && Contains("reaches the faces"));
+  // The Robin centre likewise: on z = 0 under equatorial symmetry, and inside the cube.
+  Settings robin_off_plane = defaults(Problem::ball);
+  robin_off_plane.robin_centre = {0.2, 0, 0.3};
+  CHECK_THROWS_WITH(Manufactured(half, robin_off_plane),
+                    Contains("mms.robin_centre = (0.2, 0, 0.3) lies off the plane z = 0"));
+  Settings robin_outside = defaults(Problem::ball);
+  robin_outside.robin_centre = {1.0, 0, 0};
+  CHECK_THROWS_WITH(Manufactured(half, robin_outside),
+                    Contains("mms.robin_centre = (1, 0, 0) lies outside the cube |x_i| < 1"));
   MemoryGrid full(8, 0.25, false);
   CHECK_NOTHROW(Manufactured(full, defaults(Problem::poisson)));
   CHECK_NOTHROW(Manufactured(full, off_plane));
