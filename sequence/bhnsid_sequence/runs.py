@@ -67,7 +67,7 @@ def warm_run_dir(spec: Spec, c: Config, root: Path) -> Optional[Path]:
     line = chain(spec, c)
     for d in reversed(line[:line.index(c)]):
         run_dir = root / d.relative_dir
-        if read_outcome(d, run_dir).status == "converged" and (run_dir / "checkpoints").is_dir():
+        if read_outcome(d, run_dir).status == "converged" and any(_is_complete(f) for f in _checkpoint_files(run_dir)):
             return run_dir
     return None
 
@@ -116,17 +116,17 @@ class Progress:
 
     def __init__(self, total: int, stream=sys.stderr):
         self.total, self.done, self.failed, self.running = total, 0, 0, 0
+        self.skipped = 0  # converged before this call: no measure of the time a run takes
         self.start = time.monotonic()
         self.stream = stream
-        self.spent = 0.0  # seconds of the configurations run here
 
     def show(self, note: str = ""):
         elapsed = time.monotonic() - self.start
         finished = self.done + self.failed
+        ran_here = finished - self.skipped
         left = ""
-        if finished and self.running + (self.total - finished) > 0:
-            per = elapsed / max(finished, 1)
-            left = f", about {per * (self.total - finished) / 60:.1f} min left"
+        if ran_here > 0 and self.running + (self.total - finished) > 0:
+            left = f", about {elapsed / ran_here * (self.total - finished) / 60:.1f} min left"
         print(f"sequence: {self.done} done, {self.running} running, {self.failed} failed of {self.total}{left}"
               f"{' - ' + note if note else ''}", file=self.stream, flush=True)
 
@@ -155,28 +155,80 @@ def run_one(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = True) -
                            stderr=subprocess.STDOUT, env=dict(os.environ))
     outcome = read_outcome(c, run_dir)
     if outcome.status == "converged":
-        # A run's checkpoints (two of 2.5 GB at n = 256) serve only the next run of its chain: gone
-        # once that one has converged (from them or cold), at once for the last of a chain and when
-        # nothing warm-starts (--cold).
+        # A run's checkpoints (2.3 GB each at n = 256) serve only the next run of its chain: the
+        # newest is kept until that one has converged (from it or cold), none for the last of a
+        # chain or when nothing warm-starts (--cold).
         if source is not None:
             drop_checkpoints(source)
         if chain(spec, c)[-1] == c or not warm:
             drop_checkpoints(run_dir)
+        else:
+            keep_newest_checkpoint(run_dir)
+    else:
+        # A failed configuration is run again from its start (--force) when the sequence resumes:
+        # its last state would only fill the disk (fifty of them at n = 256 are more than this
+        # project's machine holds); its log and summary.json say why it failed.
+        drop_checkpoints(run_dir)
     return outcome
+
+
+def _checkpoint_files(run_dir: Path) -> List[Path]:
+    folder = run_dir / "checkpoints"
+    if not folder.is_dir():
+        return []
+    return [f for f in folder.iterdir() if f.name.startswith("checkpoint.") and f.is_file()]
+
+
+def _is_complete(f: Path) -> bool:
+    """checkpoint.NNNNNN (the core's name for a finished one; .partial is one being written)."""
+    digits = f.name[len("checkpoint."):]
+    return len(digits) == 6 and digits.isdigit()
 
 
 def drop_checkpoints(run_dir: Path) -> None:
     """Removes what bhnsid wrote in RUN_DIR/checkpoints (checkpoint.NNNNNN and .partial files)."""
-    folder = run_dir / "checkpoints"
-    if not folder.is_dir():
-        return
-    for f in folder.iterdir():
-        if f.name.startswith("checkpoint.") and f.is_file():
-            f.unlink()
+    for f in _checkpoint_files(run_dir):
+        f.unlink()
     try:
-        folder.rmdir()
+        (run_dir / "checkpoints").rmdir()
     except OSError:
-        pass  # something else is there: not ours to remove
+        pass  # absent, or something else is there: not ours to remove
+
+
+def keep_newest_checkpoint(run_dir: Path) -> None:
+    """Of a converged run's checkpoints only the newest complete one, the one a warm start reads;
+    bhnsid keeps two so that a run killed while writing can resume, which a converged run never does."""
+    files = _checkpoint_files(run_dir)
+    complete = sorted((f for f in files if _is_complete(f)), key=lambda f: f.name)
+    for f in files:
+        if not complete or f != complete[-1]:
+            f.unlink()
+
+
+def tidy_checkpoints(spec: Spec, root: Path, todo: List[Config], warm: bool = True) -> int:
+    """Before a (resumed) sequence runs TODO: the checkpoints of a run only stay where a
+    configuration still to run warm-starts from them (its newest one); those of failed runs, of
+    runs no one needs any more and of an interrupted sequence's half-written ones go. Returns the
+    bytes freed."""
+    needed = set()
+    if warm:
+        for c in todo:
+            source = warm_run_dir(spec, c, root)
+            if source is not None:
+                needed.add(source)
+    freed = 0
+    for c in configurations(spec):
+        run_dir = root / c.relative_dir
+        files = _checkpoint_files(run_dir)
+        if not files:
+            continue
+        before = sum(f.stat().st_size for f in files)
+        if run_dir in needed:
+            keep_newest_checkpoint(run_dir)
+        else:
+            drop_checkpoints(run_dir)
+        freed += before - sum(f.stat().st_size for f in _checkpoint_files(run_dir))
+    return freed
 
 
 def run_all(bhnsid: str, spec: Spec, root: Path, jobs: int, stream=sys.stderr, warm: bool = True) -> List[Outcome]:
@@ -189,10 +241,13 @@ def run_all(bhnsid: str, spec: Spec, root: Path, jobs: int, stream=sys.stderr, w
             outcomes[c] = read_outcome(c, run_dir)
         else:
             todo.append(c)
+    freed = tidy_checkpoints(spec, root, todo, warm)
     progress = Progress(len(todo) + len(outcomes), stream)
-    progress.done = len(outcomes)
+    progress.done = progress.skipped = len(outcomes)
     if outcomes:
         progress.show(f"{len(outcomes)} already converged, skipped")
+    if freed:
+        progress.show(f"{freed / 2**30:.1f} GiB of checkpoints no run still to come starts from removed")
 
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
         pending = {}

@@ -1,0 +1,121 @@
+"""What a sequence keeps on disk: a run's checkpoints serve only the warm start of the next run of
+its chain, so a converged run keeps its newest one until that run has converged, a failed run and
+the end of a chain keep none, and a resumed sequence first removes every checkpoint no run still
+to come starts from. At n = 256 one checkpoint is 2.3 GB: a sequence that kept more filled this
+project's disk. The runs here are a stand-in executable that writes what `bhnsid run` writes (two
+checkpoints and summary.json) and fails where told, so the test needs no build."""
+import io
+import json
+import os
+import shlex
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "sequence"))
+from bhnsid_sequence.runs import Config, run_all, run_one, tidy_checkpoints  # noqa: E402
+from bhnsid_sequence.spec import Grid, Spec  # noqa: E402
+
+# A stand-in for bhnsid run: converges unless rho_max is listed in $FAKE_FAIL; records where it
+# warm-started from.
+FAKE = r'''#!/usr/bin/python3
+import json, os, shlex, sys
+from pathlib import Path
+args = sys.argv[1:]
+out = Path(args[args.index("--output") + 1])
+sets = dict(a.split("=", 1) for a in args[1:] if "=" in a and not a.startswith("--"))
+rho = sets["hydro_corotating.rho_max"]
+out.mkdir(parents=True, exist_ok=True)
+(out / "checkpoints").mkdir(exist_ok=True)
+for f in (out / "checkpoints").iterdir():
+    f.unlink()
+for i in (3, 5):
+    (out / "checkpoints" / f"checkpoint.{i:06d}").write_bytes(b"x" * 1000 * i)
+warm = args[args.index("--warm-start") + 1] if "--warm-start" in args else ""
+(out / "warm_from").write_text(warm)
+failed = rho in os.environ.get("FAKE_FAIL", "").split()
+(out / "summary.json").write_text(json.dumps({
+    "status": "failed" if failed else "converged", "message": "Roche lobe overflow" if failed else "",
+    "scalars": {}, "provenance": {"command_line": shlex.join(sys.argv)}}))
+sys.exit(1 if failed else 0)
+'''
+
+
+def names(run_dir: Path):
+    folder = run_dir / "checkpoints"
+    return sorted(f.name for f in folder.iterdir()) if folder.is_dir() else []
+
+
+class Checkpoints(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.root = Path(self.tmp.name) / "seq"
+        self.fake = Path(self.tmp.name) / "bhnsid"
+        self.fake.write_text(FAKE)
+        self.fake.chmod(0o755)
+        self.spec = Spec(file=Path("fake.yaml"), base=Path("base.yaml"), mass_ratio=1.0, x_a=[0.2],
+                         rho_max=[0.1, 0.2, 0.3, 0.4], targets=[0.6], grids=[Grid(32, 0.1)])
+        self.line = [Config(0, self.spec.grids[0], 0.2, r) for r in self.spec.rho_max]
+        os.environ["FAKE_FAIL"] = "0.3"
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def dir(self, i):
+        return self.root / self.line[i].relative_dir
+
+    def run_config(self, i):
+        return run_one(str(self.fake), self.spec, self.root, self.line[i])
+
+    def test_a_chain_keeps_only_what_the_next_warm_start_reads(self):
+        self.assertEqual(self.run_config(0).status, "converged")
+        self.assertEqual(names(self.dir(0)), ["checkpoint.000005"], "a converged run keeps only its newest")
+        self.assertEqual(self.run_config(1).status, "converged")
+        self.assertEqual((self.dir(1) / "warm_from").read_text(), str(self.dir(0)))
+        self.assertEqual(names(self.dir(0)), [], "the source goes once its successor has converged")
+        self.assertEqual(names(self.dir(1)), ["checkpoint.000005"])
+        self.assertEqual(self.run_config(2).status, "failed")
+        self.assertEqual(names(self.dir(2)), [], "a failed run keeps no checkpoint")
+        self.assertEqual(names(self.dir(1)), ["checkpoint.000005"], "the source of a failed run stays")
+        self.assertEqual(self.run_config(3).status, "converged")
+        self.assertEqual((self.dir(3) / "warm_from").read_text(), str(self.dir(1)),
+                         "past a failed neighbour to the nearest converged one")
+        self.assertEqual(names(self.dir(1)), [])
+        self.assertEqual(names(self.dir(3)), [], "the end of a chain keeps none")
+
+    def test_a_resumed_sequence_first_removes_what_no_run_to_come_reads(self):
+        for i in range(4):
+            self.run_config(i)
+        # What an interrupted sequence of an older bhnsid left: two checkpoints per run, a failed
+        # run's state, a half-written one, and a file of the user's.
+        for i in range(4):
+            (self.dir(i) / "checkpoints").mkdir(exist_ok=True)
+            for n in ("checkpoint.000007", "checkpoint.000009"):
+                (self.dir(i) / "checkpoints" / n).write_bytes(b"y" * 100)
+        (self.dir(3) / "checkpoints" / "checkpoint.000011.partial").write_bytes(b"z" * 10)
+        (self.dir(0) / "checkpoints" / "notes.txt").write_text("mine")
+        todo = [self.line[2]]  # the failed one, to be retried: it warm-starts from rho 0.2
+        freed = tidy_checkpoints(self.spec, self.root, todo)
+        self.assertEqual(names(self.dir(1)), ["checkpoint.000009"], "the source of a run to come keeps its newest")
+        self.assertEqual(names(self.dir(0)), ["notes.txt"], "a file bhnsid did not write stays")
+        self.assertEqual(names(self.dir(2)), [])
+        self.assertEqual(names(self.dir(3)), [])
+        self.assertEqual(freed, 100 * 7 + 10)
+        self.assertEqual(tidy_checkpoints(self.spec, self.root, todo, warm=False), 100,
+                         "--cold: nothing is needed")
+
+    def test_a_whole_sequence_ends_with_no_checkpoint(self):
+        outcomes = run_all(str(self.fake), self.spec, self.root, jobs=2, stream=io.StringIO())
+        self.assertEqual([o.status for o in outcomes], ["converged", "converged", "failed", "converged"])
+        self.assertEqual([names(self.dir(i)) for i in range(4)], [[]] * 4)
+        again = io.StringIO()
+        run_all(str(self.fake), self.spec, self.root, jobs=2, stream=again)
+        skipped = next(line for line in again.getvalue().splitlines() if "already converged, skipped" in line)
+        self.assertNotIn("min left", skipped, "no time estimate from runs skipped, none run yet")
+        self.assertIn(str(self.fake), shlex.split(json.loads((self.dir(0) / "summary.json").read_text())
+                                                  ["provenance"]["command_line"]))
+
+
+if __name__ == "__main__":
+    unittest.main()
