@@ -106,4 +106,24 @@ double StarFluid::rest_mass() const {
   return s * s * s * grid.integrate(d, Parity{}, 0);
 }
 
+std::optional<std::array<double, 3>> StarFluid::superluminal_matter() const {
+  if (!grid_) return std::nullopt;
+  const Level& lv = grid_->finest();
+  const Inputs in = inputs(*grid_, 0, rho0_, press_, enthalpy_, chi_, eta_, puncture_phi_);
+  const double w = constants.omega_hat;
+  // Only asked after a failure: a plain loop, not the vectorised one.
+  for (int k = 0; k < lv.nz; ++k)
+    for (int j = 0; j < lv.ny; ++j)
+      for (int i = 0; i < lv.nx; ++i) {
+        const std::ptrdiff_t p = lv.at(i, j, k);
+        if (!(in.rho0[p] > 0)) continue;
+        double u[3] = {-w * lv.y(j), w * lv.x(i), 0.0};
+        for (int c = 0; c < 3; ++c)
+          if (in.beta[c]) u[c] += in.beta[c][p];
+        if (!std::isfinite(lorentz_squared(in.puncture_phi[p] + in.chi[p], in.eta[p], u[0], u[1], u[2])))
+          return std::array<double, 3>{lv.x(i), lv.y(j), lv.z(k)};
+      }
+  return std::nullopt;
+}
+
 }  // namespace bhnsid::hydro_corotating

@@ -3,6 +3,7 @@
 // field equations read, formed from the star's rho0, P, h and the current chi, eta, beta with the
 // kinematics of corotation (kinematics.hpp).
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,10 @@ class StarFluid final : public Fluid {
   bool settled() const override { return converged; }
   std::vector<std::string> source_inputs() const override { return {fields::rho0, fields::press, fields::enthalpy}; }
   void update_sources(Grid& grid, int level) const override;
+
+  /// A point of matter where the corotating flow |beta + Omegahat xi| phi^2 / alpha reaches the
+  /// speed of light in the current fields (W undefined), if there is one: why rest_mass() is NaN.
+  std::optional<std::array<double, 3>> superluminal_matter() const;
 
   /// Registers the fluid fields and the projections on `grid` (every level).
   void attach(Grid& grid);

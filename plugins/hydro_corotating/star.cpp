@@ -243,7 +243,19 @@ StepReport Star::step(double fraction) {
   now.bernoulli = report.after.bernoulli;
   now.omega_hat = report.after.omega_hat;
   now.x_c = axis_maximum();
-  m0_change_ = m0_before > 0 ? std::fabs(fluid_->rest_mass() / m0_before - 1) : 1.0;
+  const double m0 = fluid_->rest_mass();
+  // The reset places matter by the sigma-modelled fields; the rest mass (and every source) reads
+  // the last solve's, in which the flow there may be superluminal: no state to go on from.
+  if (!std::isfinite(m0)) {
+    const auto at = fluid_->superluminal_matter();
+    throw RunFailure(fmt::format(
+        "hydro_corotating: after the Bernoulli reset the corotating flow |beta + Omegahat xi| phi^2 / alpha exceeds the "
+        "speed of light in the star{} in the last solve's fields (sigma = {}, Omegahat = {}, C_B = {}); the star "
+        "reaches the hole's light cylinder, or the step moved the constants too far",
+        at ? fmt::format(" at ({:.4g}, {:.4g}, {:.4g})", (*at)[0], (*at)[1], (*at)[2]) : std::string(), now.sigma,
+        now.omega_hat, now.bernoulli));
+  }
+  m0_change_ = m0_before > 0 ? std::fabs(m0 / m0_before - 1) : 1.0;
   report.change = std::max(report.change, m0_change_);
   report.after = now;
   history_.push_back(report);

@@ -211,3 +211,22 @@ TEST_CASE("plugins.hydro_corotating.compact_star_needs_a_finer_coarsest_level", 
   CHECK(finer.err.find("run.max_iterations = 10") != std::string::npos);
   CHECK(finer.err.find("non-finite") == std::string::npos);
 }
+
+TEST_CASE("plugins.hydro_corotating.superluminal_flow_in_the_reset_star_is_named", "[plugins][hydro_corotating][binary]") {
+  // A mu_bn = 10 star at xhat_A = 0.5 started far below its equilibrium sigma (1.96; the
+  // equilibrium is near 3.7, runs/mu10_half): the first outer step sets Omegahat = 0.31 and the
+  // Bernoulli reset puts matter where, in the fields of the first solve, the corotating flow is
+  // superluminal. The rest mass is then undefined; the failure must say so and where, not pass a
+  // NaN mass on (it used to surface as the puncture's "M0 = nan leaves no black-hole mass").
+  TempDir dir;
+  const ProcessResult r =
+      run_bhnsid({"run", (source_dir() / "parfiles" / "sequences" / "binary.yaml").string(), "--output",
+                  (dir.path() / "run").string(), "--set", "puncture.mass_ratio=10", "--set", "hydro_corotating.x_a=0.5",
+                  "--set", "hydro_corotating.rho_max=0.085", "--set", "hydro_corotating.sigma_guess=1.96", "--set",
+                  "grid.n=32", "--set", "grid.dx=0.08", "--set", "run.threads=1"});
+  INFO(r.err);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("hydro_corotating.outer_step (iteration 1)") != std::string::npos);
+  CHECK(r.err.find("exceeds the speed of light in the star at (") != std::string::npos);
+  CHECK(r.err.find("nan") == std::string::npos);
+}
