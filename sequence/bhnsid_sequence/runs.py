@@ -131,28 +131,68 @@ class Progress:
               f"{' - ' + note if note else ''}", file=self.stream, flush=True)
 
 
+# How many times a failed warm-start step in rho_max is halved (runs at the midpoints, "bridges")
+# before the run starts cold: a step that sends the first outer step past the sigma-model's fold or
+# the star over its Roche lobe is often taken in two halves (docs/validation.md §14).
+BRIDGE_HALVINGS = 2
+
+
+def _run(bhnsid: str, spec: Spec, c: Config, run_dir: Path, source: Optional[Path], log) -> int:
+    # A directory of an earlier attempt (failed, killed, other settings) is replaced; --force
+    # only ever removes what bhnsid wrote there.
+    cmd = command(bhnsid, spec, c, run_dir, source) + (["--force"] if run_dir.exists() else [])
+    return subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, env=dict(os.environ)).returncode
+
+
+def _bridge(bhnsid: str, spec: Spec, root: Path, c: Config, source: Config, log, halvings: int) -> int:
+    """c failed from the converged run `source`: runs the midpoint in rho_max from source, then c
+    from the midpoint, each failing step halved again up to `halvings` times. The midpoint is an
+    ordinary run directory of the chain (rhoR beside the configurations; not in the tables).
+    Returns c's last exit status."""
+    mid = Config(c.grid_index, c.grid, c.x_a, float(f"{(source.rho_max + c.rho_max) / 2:.6g}"))
+    if halvings == 0 or mid.rho_max in (source.rho_max, c.rho_max):
+        return 1
+    mid_dir = root / mid.relative_dir
+    print(f"bhnsid sequence: the step from rho_max = {source.rho_max:g} failed; bridging through "
+          f"rho_max = {mid.rho_max:g} ({mid_dir})", file=log, flush=True)
+    if not (up_to_date(spec, mid, mid_dir) and _checkpoint_files(mid_dir)):
+        with open(str(mid_dir) + ".out", "w") as mid_log:
+            rc = _run(bhnsid, spec, mid, mid_dir, root / source.relative_dir, mid_log)
+            if rc == 1:
+                rc = _bridge(bhnsid, spec, root, mid, source, mid_log, halvings - 1)
+        if rc != 0 or read_outcome(mid, mid_dir).status != "converged":
+            drop_checkpoints(mid_dir)
+            return rc if rc not in (0, 2) else 1
+    keep_newest_checkpoint(mid_dir)
+    rc = _run(bhnsid, spec, c, root / c.relative_dir, mid_dir, log)
+    if rc == 1:
+        rc = _bridge(bhnsid, spec, root, c, mid, log, halvings - 1)
+    drop_checkpoints(mid_dir)  # c has converged from it or from a later bridge, or starts cold
+    return rc
+
+
 def run_one(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = True) -> Outcome:
     """Runs one configuration in its run directory (the pool's worker and a SLURM array task alike),
     warm-started from its nearest converged lower-rho_max neighbour when there is one."""
     run_dir = root / c.relative_dir
     run_dir.parent.mkdir(parents=True, exist_ok=True)
     source = warm_run_dir(spec, c, root) if warm else None
-    # A directory of an earlier attempt (failed, killed, other settings) is replaced; --force
-    # only ever removes what bhnsid wrote there.
-    cmd = command(bhnsid, spec, c, run_dir, source) + (["--force"] if run_dir.exists() else [])
     with open(str(run_dir) + ".out", "w") as log:
-        r = subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, env=dict(os.environ))
+        rc = _run(bhnsid, spec, c, run_dir, source, log)
         # Exit 1 (the run failed) or 2 (the start refused); a signal (exit >= 128, or negative: the
         # user's Ctrl-C, a job's time limit) stops here instead of starting the run again.
-        if r.returncode in (1, 2) and source is not None:
+        if rc == 1 and source is not None:
+            line = chain(spec, c)
+            source_config = next(d for d in line if root / d.relative_dir == source)
+            rc = _bridge(bhnsid, spec, root, c, source_config, log, BRIDGE_HALVINGS)
+        if rc in (1, 2) and source is not None:
             # The neighbour refused as a start (another build since, a damaged checkpoint), or the
-            # run failed from it (a 25 % step in rho_max can send the first Newton step over the
-            # sigma-model's fold where the cold start, below it, converges): from the run's own
-            # initial guess instead; the log keeps both.
-            print(f"bhnsid sequence: the run from {source} ended with exit {r.returncode}; starting cold", file=log,
+            # run failed from it and from the bridges (the cold start, below the sigma-model's
+            # fold, may still converge): from the run's own initial guess instead; the log keeps
+            # every attempt.
+            print(f"bhnsid sequence: the run from {source} ended with exit {rc}; starting cold", file=log,
                   flush=True)
-            subprocess.run(command(bhnsid, spec, c, run_dir) + (["--force"] if run_dir.exists() else []), stdout=log,
-                           stderr=subprocess.STDOUT, env=dict(os.environ))
+            _run(bhnsid, spec, c, run_dir, None, log)
     outcome = read_outcome(c, run_dir)
     if outcome.status == "converged":
         # A run's checkpoints (2.3 GB each at n = 256) serve only the next run of its chain: the

@@ -1,9 +1,16 @@
-"""What a sequence keeps on disk: a run's checkpoints serve only the warm start of the next run of
-its chain, so a converged run keeps its newest one until that run has converged, a failed run and
-the end of a chain keep none, and a resumed sequence first removes every checkpoint no run still
-to come starts from. At n = 256 one checkpoint is 2.3 GB: a sequence that kept more filled this
-project's disk. The runs here are a stand-in executable that writes what `bhnsid run` writes (two
-checkpoints and summary.json) and fails where told, so the test needs no build."""
+"""How a sequence runs a chain of rho_max and what it keeps on disk.
+
+Checkpoints: a run's checkpoints serve only the warm start of the next run of its chain, so a
+converged run keeps its newest one until that run has converged, a failed run and the end of a
+chain keep none, and a resumed sequence first removes every checkpoint no run still to come starts
+from. At n = 256 one checkpoint is 2.3 GB: a sequence that kept more filled this project's disk.
+
+Bridges: a warm start that fails is taken again through the midpoint in rho_max, twice halved at
+most, before the run starts cold.
+
+The runs are a stand-in executable that writes what `bhnsid run` writes (two checkpoints and
+summary.json), and fails where told or when it starts too far from its neighbour, so the test needs
+no build. usage: test_chain_runs.py [Checkpoints|Bridges]"""
 import io
 import json
 import os
@@ -35,6 +42,9 @@ for i in (3, 5):
 warm = args[args.index("--warm-start") + 1] if "--warm-start" in args else ""
 (out / "warm_from").write_text(warm)
 failed = rho in os.environ.get("FAKE_FAIL", "").split()
+# A warm start from a neighbour further than $FAKE_MAX_STEP in rho_max fails (a step over the fold).
+if warm and abs(float(rho) - float(Path(warm).name[3:])) > float(os.environ.get("FAKE_MAX_STEP", "1")):
+    failed = True
 (out / "summary.json").write_text(json.dumps({
     "status": "failed" if failed else "converged", "message": "Roche lobe overflow" if failed else "",
     "scalars": {}, "provenance": {"command_line": shlex.join(sys.argv)}}))
@@ -48,6 +58,7 @@ def names(run_dir: Path):
 
 
 class Checkpoints(unittest.TestCase):
+    # Runs of a chain with checkpoints: what stays on disk.
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
         self.root = Path(self.tmp.name) / "seq"
@@ -58,6 +69,7 @@ class Checkpoints(unittest.TestCase):
                          rho_max=[0.1, 0.2, 0.3, 0.4], targets=[0.6], grids=[Grid(32, 0.1)])
         self.line = [Config(0, self.spec.grids[0], 0.2, r) for r in self.spec.rho_max]
         os.environ["FAKE_FAIL"] = "0.3"
+        os.environ["FAKE_MAX_STEP"] = "1"
 
     def tearDown(self):
         self.tmp.cleanup()
@@ -115,6 +127,52 @@ class Checkpoints(unittest.TestCase):
         self.assertNotIn("min left", skipped, "no time estimate from runs skipped, none run yet")
         self.assertIn(str(self.fake), shlex.split(json.loads((self.dir(0) / "summary.json").read_text())
                                                   ["provenance"]["command_line"]))
+
+
+class Bridges(unittest.TestCase):
+    """A warm start that fails is retried through the midpoint in rho_max (twice halved at most)
+    before the run starts cold."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.root = Path(self.tmp.name) / "seq"
+        self.fake = Path(self.tmp.name) / "bhnsid"
+        self.fake.write_text(FAKE)
+        self.fake.chmod(0o755)
+        self.spec = Spec(file=Path("fake.yaml"), base=Path("base.yaml"), mass_ratio=1.0, x_a=[0.2],
+                         rho_max=[0.1, 0.3], targets=[0.6], grids=[Grid(32, 0.1)])
+        os.environ["FAKE_FAIL"] = ""
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def chain_dir(self, rho):
+        return self.root / Config(0, self.spec.grids[0], 0.2, rho).relative_dir
+
+    def run_chain(self, max_step):
+        os.environ["FAKE_MAX_STEP"] = str(max_step)
+        return run_all(str(self.fake), self.spec, self.root, jobs=1, stream=io.StringIO())
+
+    def test_one_bridge(self):
+        outcomes = self.run_chain(0.15)
+        self.assertEqual([o.status for o in outcomes], ["converged", "converged"])
+        self.assertEqual((self.chain_dir(0.3) / "warm_from").read_text(), str(self.chain_dir(0.2)))
+        self.assertEqual((self.chain_dir(0.2) / "warm_from").read_text(), str(self.chain_dir(0.1)))
+        self.assertIn("bridging through rho_max = 0.2", Path(str(self.chain_dir(0.3)) + ".out").read_text())
+        self.assertEqual([names(self.chain_dir(r)) for r in (0.1, 0.2, 0.3)], [[]] * 3, "no checkpoint left")
+
+    def test_a_bridge_bridged_again(self):
+        outcomes = self.run_chain(0.06)
+        self.assertEqual([o.status for o in outcomes], ["converged", "converged"])
+        self.assertEqual((self.chain_dir(0.2) / "warm_from").read_text(), str(self.chain_dir(0.15)))
+        self.assertEqual((self.chain_dir(0.3) / "warm_from").read_text(), str(self.chain_dir(0.25)))
+        self.assertEqual([names(self.chain_dir(r)) for r in (0.1, 0.15, 0.2, 0.25, 0.3)], [[]] * 5)
+
+    def test_too_small_a_step_starts_cold(self):
+        outcomes = self.run_chain(0.02)
+        self.assertEqual([o.status for o in outcomes], ["converged", "converged"])
+        self.assertEqual((self.chain_dir(0.3) / "warm_from").read_text(), "", "cold after two halvings")
+        self.assertIn("starting cold", Path(str(self.chain_dir(0.3)) + ".out").read_text())
 
 
 if __name__ == "__main__":
