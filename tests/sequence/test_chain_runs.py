@@ -57,8 +57,10 @@ def names(run_dir: Path):
     return sorted(f.name for f in folder.iterdir()) if folder.is_dir() else []
 
 
-class Checkpoints(unittest.TestCase):
-    # Runs of a chain with checkpoints: what stays on disk.
+class FakeChain(unittest.TestCase):
+    """One chain (xhat_A = 0.2, one grid) of the stand-in runs in a fresh folder."""
+    rho_max = [0.1]
+
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
         self.root = Path(self.tmp.name) / "seq"
@@ -66,13 +68,25 @@ class Checkpoints(unittest.TestCase):
         self.fake.write_text(FAKE)
         self.fake.chmod(0o755)
         self.spec = Spec(file=Path("fake.yaml"), base=Path("base.yaml"), mass_ratio=1.0, x_a=[0.2],
-                         rho_max=[0.1, 0.2, 0.3, 0.4], targets=[0.6], grids=[Grid(32, 0.1)])
-        self.line = [Config(0, self.spec.grids[0], 0.2, r) for r in self.spec.rho_max]
-        os.environ["FAKE_FAIL"] = "0.3"
+                         rho_max=self.rho_max, targets=[0.6], grids=[Grid(32, 0.1)])
+        os.environ["FAKE_FAIL"] = ""
         os.environ["FAKE_MAX_STEP"] = "1"
 
     def tearDown(self):
         self.tmp.cleanup()
+
+    def chain_dir(self, rho):
+        return self.root / Config(0, self.spec.grids[0], 0.2, rho).relative_dir
+
+
+class Checkpoints(FakeChain):
+    """Runs of a chain with checkpoints: what stays on disk."""
+    rho_max = [0.1, 0.2, 0.3, 0.4]
+
+    def setUp(self):
+        super().setUp()
+        self.line = [Config(0, self.spec.grids[0], 0.2, r) for r in self.spec.rho_max]
+        os.environ["FAKE_FAIL"] = "0.3"
 
     def dir(self, i):
         return self.root / self.line[i].relative_dir
@@ -129,25 +143,10 @@ class Checkpoints(unittest.TestCase):
                                                   ["provenance"]["command_line"]))
 
 
-class Bridges(unittest.TestCase):
+class Bridges(FakeChain):
     """A warm start that fails is retried through the midpoint in rho_max (twice halved at most)
     before the run starts cold."""
-
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.root = Path(self.tmp.name) / "seq"
-        self.fake = Path(self.tmp.name) / "bhnsid"
-        self.fake.write_text(FAKE)
-        self.fake.chmod(0o755)
-        self.spec = Spec(file=Path("fake.yaml"), base=Path("base.yaml"), mass_ratio=1.0, x_a=[0.2],
-                         rho_max=[0.1, 0.3], targets=[0.6], grids=[Grid(32, 0.1)])
-        os.environ["FAKE_FAIL"] = ""
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def chain_dir(self, rho):
-        return self.root / Config(0, self.spec.grids[0], 0.2, rho).relative_dir
+    rho_max = [0.1, 0.3]
 
     def run_chain(self, max_step):
         os.environ["FAKE_MAX_STEP"] = str(max_step)
