@@ -155,7 +155,7 @@ def _bridge(bhnsid: str, spec: Spec, root: Path, c: Config, source: Config, log,
     mid_dir = root / mid.relative_dir
     print(f"bhnsid sequence: the step from rho_max = {source.rho_max:g} failed; bridging through "
           f"rho_max = {mid.rho_max:g} ({mid_dir})", file=log, flush=True)
-    if not (up_to_date(spec, mid, mid_dir) and _checkpoint_files(mid_dir)):
+    if not (up_to_date(spec, mid, mid_dir) and any(_is_complete(f) for f in _checkpoint_files(mid_dir))):
         with open(str(mid_dir) + ".out", "w") as mid_log:
             rc = _run(bhnsid, spec, mid, mid_dir, root / source.relative_dir, mid_log)
             if rc == 1:
