@@ -167,6 +167,19 @@ class Bridges(FakeChain):
         self.assertEqual((self.chain_dir(0.3) / "warm_from").read_text(), str(self.chain_dir(0.25)))
         self.assertEqual([names(self.chain_dir(r)) for r in (0.1, 0.15, 0.2, 0.25, 0.3)], [[]] * 5)
 
+    def test_a_converged_bridge_with_its_checkpoint_is_reused(self):
+        # What a sequence killed after its bridge converged leaves: the bridge and the source with
+        # their checkpoints, the run itself not converged.
+        self.run_chain(0.15)
+        for rho in (0.1, 0.2):
+            (self.chain_dir(rho) / "checkpoints").mkdir(exist_ok=True)
+            (self.chain_dir(rho) / "checkpoints" / "checkpoint.000005").write_bytes(b"x")
+        Path(str(self.chain_dir(0.2)) + ".out").unlink()
+        (self.chain_dir(0.3) / "summary.json").unlink()
+        self.assertEqual([o.status for o in self.run_chain(0.15)], ["converged", "converged"])
+        self.assertFalse(Path(str(self.chain_dir(0.2)) + ".out").exists(), "the bridge is not run again")
+        self.assertEqual((self.chain_dir(0.3) / "warm_from").read_text(), str(self.chain_dir(0.2)))
+
     def test_too_small_a_step_starts_cold(self):
         outcomes = self.run_chain(0.02)
         self.assertEqual([o.status for o in outcomes], ["converged", "converged"])
