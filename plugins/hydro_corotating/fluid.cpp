@@ -110,19 +110,20 @@ std::optional<std::array<double, 3>> StarFluid::superluminal_matter() const {
   if (!grid_) return std::nullopt;
   const Level& lv = grid_->finest();
   const Inputs in = inputs(*grid_, 0, rho0_, press_, enthalpy_, chi_, eta_, puncture_phi_);
-  const double w = constants.omega_hat;
-  // Only asked after a failure: a plain loop, not the vectorised one.
+  // Only asked after a failure: the branch in the loop and the search for the point cost nothing.
+  std::ptrdiff_t found = -1;
+  auto find = [&](std::ptrdiff_t p, double, double, double, double w2, double, double) {
+    if (found < 0 && in.rho0[p] > 0 && !std::isfinite(w2)) found = p;
+  };
+  if (in.beta[0])
+    for_points<true>(lv, in, constants.omega_hat, find);
+  else
+    for_points<false>(lv, in, constants.omega_hat, find);
+  if (found < 0) return std::nullopt;
   for (int k = 0; k < lv.nz; ++k)
     for (int j = 0; j < lv.ny; ++j)
-      for (int i = 0; i < lv.nx; ++i) {
-        const std::ptrdiff_t p = lv.at(i, j, k);
-        if (!(in.rho0[p] > 0)) continue;
-        double u[3] = {-w * lv.y(j), w * lv.x(i), 0.0};
-        for (int c = 0; c < 3; ++c)
-          if (in.beta[c]) u[c] += in.beta[c][p];
-        if (!std::isfinite(lorentz_squared(in.puncture_phi[p] + in.chi[p], in.eta[p], u[0], u[1], u[2])))
-          return std::array<double, 3>{lv.x(i), lv.y(j), lv.z(k)};
-      }
+      for (int i = 0; i < lv.nx; ++i)
+        if (lv.at(i, j, k) == found) return std::array<double, 3>{lv.x(i), lv.y(j), lv.z(k)};
   return std::nullopt;
 }
 

@@ -67,7 +67,7 @@ def warm_run_dir(spec: Spec, c: Config, root: Path) -> Optional[Path]:
     line = chain(spec, c)
     for d in reversed(line[:line.index(c)]):
         run_dir = root / d.relative_dir
-        if read_outcome(d, run_dir).status == "converged" and any(_is_complete(f) for f in _checkpoint_files(run_dir)):
+        if read_outcome(d, run_dir).status == "converged" and _has_checkpoint(run_dir):
             return run_dir
     return None
 
@@ -155,7 +155,7 @@ def _bridge(bhnsid: str, spec: Spec, root: Path, c: Config, source: Config, log,
     mid_dir = root / mid.relative_dir
     print(f"bhnsid sequence: the step from rho_max = {source.rho_max:g} failed; bridging through "
           f"rho_max = {mid.rho_max:g} ({mid_dir})", file=log, flush=True)
-    if not (up_to_date(spec, mid, mid_dir) and any(_is_complete(f) for f in _checkpoint_files(mid_dir))):
+    if not (up_to_date(spec, mid, mid_dir) and _has_checkpoint(mid_dir)):
         with open(str(mid_dir) + ".out", "w") as mid_log:
             rc = _run(bhnsid, spec, mid, mid_dir, root / source.relative_dir, mid_log)
             if rc == 1:
@@ -223,6 +223,11 @@ def _is_complete(f: Path) -> bool:
     """checkpoint.NNNNNN (the core's name for a finished one; .partial is one being written)."""
     digits = f.name[len("checkpoint."):]
     return len(digits) == 6 and digits.isdigit()
+
+
+def _has_checkpoint(run_dir: Path) -> bool:
+    """A complete checkpoint there, one a warm start can read."""
+    return any(_is_complete(f) for f in _checkpoint_files(run_dir))
 
 
 def drop_checkpoints(run_dir: Path) -> None:
