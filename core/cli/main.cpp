@@ -90,7 +90,8 @@ int main(int argc, char** argv) {
       ->excludes("--force");
   run->add_option("--warm-start", warm_start,
                   "start from the newest checkpoint of another run directory of this build whose parameters differ "
-                  "only in steerable ones (the previous run of a parameter scan)")
+                  "only in steerable ones (the previous run of a parameter scan) or by one refinement of the lattice "
+                  "(the next coarser run of a convergence series)")
       ->excludes("--resume");
   run->add_flag("--verbose", verbose, "print log.txt's detail lines too (every multigrid cycle, every plugin step)");
   add_plugin_path(run);

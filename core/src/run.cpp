@@ -393,8 +393,9 @@ RunResult run(const Configuration& config, const RunOptions& options) {
   if (ok && warm.file) {
     try {
       apply_warm_start(state, context_of, *warm.file);
-      log.info("warm start from {} (iteration {}{}){}", warm.file->path().string(), warm.iteration,
+      log.info("warm start from {} (iteration {}{}{}){}", warm.file->path().string(), warm.iteration,
                warm.converged ? ", converged" : ", not converged",
+               warm.refined ? ", the next coarser lattice, interpolated" : "",
                warm.changed.empty() ? "" : fmt::format(": {}", warm.changed));
     } catch (const InputError& e) {  // a section its plugin cannot read
       exec.fail(fmt::format("--warm-start: {}", e.what()), exit_input);

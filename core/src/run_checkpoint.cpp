@@ -3,7 +3,9 @@
 #include <dlfcn.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -90,16 +92,64 @@ void check_parameters_match(CheckpointFileReader& f, const Configuration& config
                                    config.file.source, f.path().string(), key, value, advice));
 }
 
+// The declaration of `key` ("section.name") by its plugin; null when no plugin declares it.
+const ParamSpec* find_spec(const Configuration& config, const std::string& key) {
+  const std::size_t dot = key.find('.');
+  if (dot == std::string::npos) return nullptr;
+  for (const auto* decl : config.decls)
+    if (decl->name == key.substr(0, dot)) return decl->find_param(key.substr(dot + 1));
+  return nullptr;
+}
+
 // A parameter its plugin declared steerable: one that may differ between the runs of a sequence.
 bool steerable(const Configuration& config, const std::string& key) {
-  const std::size_t dot = key.find('.');
-  if (dot == std::string::npos) return false;
-  for (const auto* decl : config.decls)
-    if (decl->name == key.substr(0, dot)) {
-      const ParamSpec* spec = decl->find_param(key.substr(dot + 1));
-      return spec && spec->steerable;
-    }
-  return false;
+  const ParamSpec* spec = find_spec(config, key);
+  return spec && spec->steerable;
+}
+
+// How the plugin of `key` declared it to follow the spacing (bhnsid validate); none for others.
+Refinement refinement(const Configuration& config, const std::string& key) {
+  const ParamSpec* spec = find_spec(config, key);
+  return spec ? spec->refinement : Refinement::none;
+}
+
+// `now` is `was` after one halving of the spacing: twice it (a point count) or half it (a spacing).
+bool one_refinement(Refinement how, const std::string& was, const std::string& now) {
+  char* end = nullptr;
+  const double a = std::strtod(was.c_str(), &end);
+  if (end == was.c_str() || *end != '\0') return false;
+  const double b = std::strtod(now.c_str(), &end);
+  if (end == now.c_str() || *end != '\0') return false;
+  const double expected = how == Refinement::doubles ? 2 * a : 0.5 * a;
+  return std::fabs(b - expected) <= 1e-12 * std::fabs(expected);
+}
+
+// The parameters that follow the spacing, of a warm start from the next coarser run of a
+// convergence series (grid.n doubled, grid.dx halved, ...): all of them exactly one refinement
+// away, or none of them changed. Returns the refined keys (empty: the same lattice); InputError
+// when only some are refined or one by another factor, naming them.
+std::vector<std::string> refined_keys(const std::map<std::string, std::string>& was, const std::string& fingerprint,
+                                      const Configuration& config, const std::string& file) {
+  std::vector<std::string> refined, same;
+  for (const auto& [key, value] : fingerprint_lines(fingerprint)) {
+    const Refinement how = refinement(config, key);
+    auto it = was.find(key);
+    if (how == Refinement::none || it == was.end()) continue;
+    if (it->second == value)
+      same.push_back(key);
+    else if (one_refinement(how, it->second, value))
+      refined.push_back(key);
+    else
+      throw InputError(fmt::format("{}: {}: the checkpoint {} was written with {} = {}, this run has {}; a warm start "
+                                   "reads a run of the same lattice or of the next coarser one ({} {} here)",
+                                   config.file.source, key, file, key, it->second, value, key,
+                                   how == Refinement::doubles ? "half" : "twice"));
+  }
+  if (!refined.empty() && !same.empty())
+    throw InputError(fmt::format("{}: the checkpoint {} is refined in {} but not in {}; a warm start from the next "
+                                 "coarser run needs every parameter that follows the spacing refined once",
+                                 config.file.source, file, refined.front(), same.front()));
+  return refined;
 }
 
 }  // namespace
@@ -243,10 +293,15 @@ WarmPoint find_warm_point(const fs::path& source_dir, const Configuration& confi
     throw InputError(fmt::format("--warm-start {}: written by another build of bhnsid (build id {}, this one {}); a warm "
                                  "start reads the plugins' own state, which only the same build knows",
                                  f.path().string(), theirs, build));
-  const auto may_change = [&config](const std::string& key) { return may_differ(key) || steerable(config, key); };
-  check_parameters_match(f, config, may_change,
-                         "a warm start may change only steerable parameters (bhnsid params marks them [steerable])");
   const auto was = fingerprint_lines(f.string("parameters"));
+  const std::vector<std::string> refined = refined_keys(was, parameter_fingerprint(config), config, f.path().string());
+  point.refined = !refined.empty();
+  const auto may_change = [&config, &refined](const std::string& key) {
+    return may_differ(key) || steerable(config, key) || std::find(refined.begin(), refined.end(), key) != refined.end();
+  };
+  check_parameters_match(f, config, may_change,
+                         "a warm start may change only steerable parameters (bhnsid params marks them [steerable]) and "
+                         "refine the lattice by one step");
   for (const auto& [key, value] : fingerprint_lines(parameter_fingerprint(config))) {
     auto it = was.find(key);
     if (it != was.end() && it->second != value && !may_differ(key))

@@ -44,12 +44,15 @@ ResumePoint find_resume_point(const std::filesystem::path& run_dir, const Config
                               const Log& log);
 
 /// The newest checkpoint of another run (`bhnsid run --warm-start DIR`): same build, and parameters
-/// that differ only where a plugin declared them steerable (InputError naming the key otherwise).
+/// that differ only where a plugin declared them steerable, or, all of those that follow the
+/// spacing together, by one refinement (the next coarser run of a convergence series: grid.n half,
+/// grid.dx twice this run's); InputError naming the key otherwise.
 struct WarmPoint {
   std::unique_ptr<CheckpointFileReader> file;
   int iteration = 0;
   bool converged = false;
   std::string changed;  ///< "section.key old -> new, ..." for the log
+  bool refined = false;  ///< the source is the next coarser run of a convergence series (its plugins interpolate)
 };
 WarmPoint find_warm_point(const std::filesystem::path& source_dir, const Configuration& config, const std::string& build);
 

@@ -98,8 +98,8 @@ void declare(core::PluginBuilder& b) {
   b.checkpoint([state](Context&, core::CheckpointWriter& out) { state->grid->save(out); },
                [state](Context&, const core::CheckpointReader& in) { state->grid->restore(in); });
   // A neighbour of the same lattice: its fields (and the excision masks the shift restores with
-  // them) are the warm start's initial guess.
-  b.warm_start([state](Context&, const core::CheckpointReader& in) { state->grid->restore(in); });
+  // them) are the warm start's initial guess; of the next coarser lattice, its fields interpolated.
+  b.warm_start([state](Context&, const core::CheckpointReader& in) { state->grid->warm_start(in); });
 
   b.schedule(Bin::terminate, "report_memory", [state](Context& ctx) {
      if (!state->grid) return;

@@ -48,10 +48,15 @@ class UniformGrid final : public Grid {
   std::vector<std::array<double, 2>> line_x(const double* values, int level) const override;
 
   /// Every array of every field and mask on every level, ghosts included (grid_checkpoint.cpp):
-  /// the solver's warm state lives on the coarse levels too, so a resumed run continues bit for bit.
+  /// the solver's warm state lives on the coarse levels too, so a resumed run continues bit for bit;
+  /// and the finest level's n and dx ("lattice"), which a warm start compares with its own.
   void save(core::CheckpointWriter& out) const;
   /// The same arrays back; InputError (from the reader) when a field, level or size differs.
   void restore(const core::CheckpointReader& in);
+  /// `bhnsid run --warm-start`: restore() from a run of this lattice; from the next coarser one
+  /// (n half, dx twice), each field's finest level interpolated (second order) and its coarse
+  /// levels shifted down by one; the masks stay as SETUP made them.
+  void warm_start(const core::CheckpointReader& in);
 
   /// Bytes held by all fields and masks, for the log.
   std::size_t bytes_allocated() const { return bytes_; }

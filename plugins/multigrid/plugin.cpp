@@ -151,9 +151,10 @@ void declare(core::PluginBuilder& b) {
   };
 
   b.checkpoint(
-      [state](Context&, core::CheckpointWriter& out) {
+      [state](Context& ctx, core::CheckpointWriter& out) {
         out.put_integer("total_cycles", state->total_cycles);
         out.put_integer("has_solver", state->solver ? 1 : 0);
+        out.put("finest_dx", ctx.services().get<Grid>("grid").finest().dx);
         if (state->solver) state->solver->save(out);
       },
       [state, make_solver](Context& ctx, const core::CheckpointReader& in) {
@@ -163,11 +164,15 @@ void declare(core::PluginBuilder& b) {
         state->solver->restore(in);
       });
   // A neighbour's converged fields: continue them with cycles (its tau and coarse Jacobian are
-  // this lattice's and nearly this problem's); the cycle count is this run's own.
+  // this lattice's and nearly this problem's); the cycle count is this run's own. The next coarser
+  // run's fields, which the grid interpolates, are continued with cycles too.
   b.warm_start([state, make_solver](Context& ctx, const core::CheckpointReader& in) {
     if (in.integer("has_solver") == 0) return;
     make_solver(ctx);
-    state->solver->restore(in);
+    if (in.real("finest_dx") == ctx.services().get<Grid>("grid").finest().dx)
+      state->solver->restore(in);
+    else
+      state->solver->warm_start_from_coarser(in);
   });
 
   b.schedule(Bin::solve, "solve", [state, make_solver](Context& ctx) {

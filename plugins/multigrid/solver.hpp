@@ -100,6 +100,11 @@ class FasSolver {
   /// warm, the truncation-error estimates, the coarsest level's chord Jacobian.
   void save(core::CheckpointWriter& out) const;
   void restore(const core::CheckpointReader& in);
+  /// From the next coarser run (bhnsid run --warm-start): whether its fields, which the grid
+  /// interpolates, are warm, and its truncation-error estimates (about 4x this lattice's: the FMG
+  /// restart and divergence thresholds of the first solve err high). The coarsest level's Jacobian
+  /// is this run's own: it goes with the masks, which are this run's.
+  void warm_start_from_coarser(const core::CheckpointReader& in);
   /// The history of the last solve, also after it failed.
   const SolveReport& last_report() const { return report_; }
 

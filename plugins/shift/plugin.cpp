@@ -148,8 +148,9 @@ void declare(core::PluginBuilder& b) {
 
   b.checkpoint([state](Context&, core::CheckpointWriter& out) { state->equation->save(out); },
                [state](Context&, const core::CheckpointReader& in) { state->equation->restore(in); });
-  // The excision state that goes with the masks the grid's warm start hands over.
-  b.warm_start([state](Context&, const core::CheckpointReader& in) { state->equation->restore(in); });
+  // The excision state that goes with the masks the grid's warm start hands over (a run of the same
+  // lattice; from a coarser one SETUP's excision stays, as the grid's masks do).
+  b.warm_start([state](Context&, const core::CheckpointReader& in) { state->equation->warm_start(in); });
 
   b.schedule(Bin::solve, "excision", [state](Context& ctx) {
      const ExcisionReport r = state->equation->update_puncture();

@@ -65,6 +65,9 @@ class ShiftEquation final : public EllipticEquation {
   /// loses the held region of its output (shift_checkpoint.cpp).
   void save(core::CheckpointWriter& out) const;
   void restore(const core::CheckpointReader& in);
+  /// `bhnsid run --warm-start`: restore() from a run of this lattice; from a coarser one (whose
+  /// masks the grid does not carry over) the excision SETUP built here stays.
+  void warm_start(const core::CheckpointReader& in);
   /// The cube the excision mask was last built for (hatted), none before the first build or
   /// without a puncture.
   std::optional<Cube> held_cube() const {

@@ -9,6 +9,7 @@ void ShiftEquation::save(core::CheckpointWriter& out) const {
   for (const stencil::Box& b : held_box_) boxes.insert(boxes.end(), {b.i0, b.i1, b.j0, b.j1, b.k0, b.k1});
   out.put_integers("held_boxes", boxes);
   out.put_integers("nearest_levels", std::vector<std::int64_t>(last_nearest_levels_.begin(), last_nearest_levels_.end()));
+  out.put("finest_dx", grid_.finest().dx);
 }
 
 void ShiftEquation::restore(const core::CheckpointReader& in) {
@@ -27,6 +28,11 @@ void ShiftEquation::restore(const core::CheckpointReader& in) {
                                      static_cast<int>(boxes[at + 4]), static_cast<int>(boxes[at + 5])});
   const std::vector<std::int64_t> nearest = in.integers("nearest_levels");
   last_nearest_levels_.assign(nearest.begin(), nearest.end());
+}
+
+void ShiftEquation::warm_start(const core::CheckpointReader& in) {
+  // The held boxes are indices of the source's levels: only a run of this lattice can use them.
+  if (in.real("finest_dx") == grid_.finest().dx) restore(in);
 }
 
 }  // namespace bhnsid::shift

@@ -93,3 +93,29 @@ TEST_CASE("core.warm_start.refuses_what_is_not_a_steerable_neighbour", "[core][r
   CHECK(both.exit_code == 2);
   CHECK_THAT(both.err, Contains("excludes"));
 }
+
+TEST_CASE("core.warm_start.from_the_next_coarser_run_refines_every_lattice_parameter_together", "[core][run][warm]") {
+  Neighbour nb;  // points = 8, spacing = 0.5
+  const fs::path finer = nb.dir.path() / "finer";
+  const ProcessResult r =
+      run(nb.parfile, finer, {"--set", "tp_checkpoint.points=16", "--set", "tp_checkpoint.spacing=0.25", "--warm-start",
+                              nb.out.string()});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(read_file(finer / "log.txt"), Contains("the next coarser lattice") && Contains("tp_checkpoint.points 8"));
+  const auto refused = [&](const std::string& name, std::vector<std::string> sets, const std::string& says) {
+    std::vector<std::string> extra;
+    for (const auto& s : sets) extra.insert(extra.end(), {"--set", s});
+    extra.insert(extra.end(), {"--warm-start", nb.out.string()});
+    const ProcessResult bad = run(nb.parfile, nb.dir.path() / name, extra);
+    INFO(bad.err);
+    CHECK(bad.exit_code == 2);
+    CHECK(line_count(bad.err) == 1);
+    CHECK_THAT(bad.err, Contains(says));
+    CHECK_FALSE(fs::exists(nb.dir.path() / name));
+  };
+  // Half a refinement (the count doubled, the spacing kept), two refinements, a coarsening.
+  refused("a", {"tp_checkpoint.points=16"}, "refined in tp_checkpoint.points but not in tp_checkpoint.spacing");
+  refused("b", {"tp_checkpoint.points=32", "tp_checkpoint.spacing=0.125"}, "the next coarser one");
+  refused("c", {"tp_checkpoint.points=4", "tp_checkpoint.spacing=1"}, "tp_checkpoint.points");
+}

@@ -25,6 +25,9 @@ void declare(PluginBuilder& b) {
   b.real("target").doc("the fixed point").default_value(3.0).steerable();
   b.real("wobble").doc("amplitude of the step's sin(step) term, which makes every step count matter").default_value(1e-3);
   b.real("tolerance").doc("converged when the last change is below this").default_value(1e-6).greater_than(0);
+  // A lattice that the loop does not read: what a warm start from the next coarser run may refine.
+  b.integer("points").doc("a point count, doubled per refinement").default_value(std::int64_t{8}).refines(Refinement::doubles);
+  b.real("spacing").doc("a spacing, halved per refinement").default_value(0.5).refines(Refinement::halves);
   b.schedule(Bin::initial, "start", [s](Context&) { s->x = 0; });
   b.schedule(Bin::update, "step", [s](Context& ctx) {
     const double next = 0.5 * s->x + 0.5 * ctx.params().real("target") + ctx.params().real("wobble") * std::sin(static_cast<double>(s->changes.size()));

@@ -1,7 +1,9 @@
 // A sequence's warm start (bhnsid run --warm-start): the quick start at (rho0)_max = 0.105 started
 // from the converged quick start at 0.1 (its fields, the excision state, the hole and the star's
 // sigma, Omegahat and C_B) reaches the fixed point a cold start at 0.105 reaches, in fewer outer
-// iterations; a neighbour at another x_a (not steerable) is refused.
+// iterations; a neighbour at another x_a (not steerable) is refused. The same from the next coarser
+// run (n = 32 -> 64, dx halved): the fields interpolated, the excision rebuilt, the fixed point of
+// the cold run on the finer lattice.
 #include <catch2/catch.hpp>
 
 #include <nlohmann/json.hpp>
@@ -49,4 +51,33 @@ TEST_CASE("plugins.hydro_corotating.warm_start_from_a_neighbour_reaches_the_cold
                                           "hydro_corotating.x_a=0.35", "--warm-start", neighbour.string()});
   CHECK(other.exit_code == 2);
   CHECK_THAT(other.err, Contains("hydro_corotating.x_a") && Contains("steerable"));
+}
+
+TEST_CASE("plugins.hydro_corotating.warm_start_from_the_coarser_lattice_reaches_the_cold_fixed_point",
+          "[plugins][hydro_corotating][binary][warm]") {
+  TempDir dir;
+  const std::string quickstart = (source_dir() / "parfiles" / "quickstart.yaml").string();  // n = 32, dx = 0.12
+  const auto coarse = dir.path() / "n32", cold = dir.path() / "cold", warm = dir.path() / "warm";
+  const auto run = [&](const std::filesystem::path& out, std::vector<std::string> extra) {
+    std::vector<std::string> args = {"run", quickstart, "--output", out.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const ProcessResult r = run_bhnsid(args);
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    return json::parse(read_file(out / "summary.json"));
+  };
+  const json sa = run(coarse, {});
+  const json sc = run(cold, {"--set", "grid.n=64", "--set", "grid.dx=0.06"});
+  const json sw = run(warm, {"--set", "grid.n=64", "--set", "grid.dx=0.06", "--warm-start", coarse.string()});
+  CHECK_THAT(read_file(warm / "log.txt"), Contains("the next coarser lattice") && Contains("grid.n 32 -> 64"));
+  for (const char* key : {"sigma", "omega_hat", "bernoulli_constant", "rest_mass", "bh_momentum_y", "adm_mass",
+                          "bh_bare_mass"}) {
+    INFO(key);
+    CHECK(std::fabs(sw["scalars"][key].get<double>() / sc["scalars"][key].get<double>() - 1) < 1e-5);
+  }
+  // Not the coarse run's fixed point: the truncation error of n = 32 is far above the tolerance.
+  CHECK(std::fabs(sw["scalars"]["sigma"].get<double>() / sa["scalars"]["sigma"].get<double>() - 1) > 1e-4);
+  const int cold_iterations = sc["iterations"].get<int>(), warm_iterations = sw["iterations"].get<int>();
+  INFO("cold " << cold_iterations << ", warm " << warm_iterations << " iterations");
+  CHECK(warm_iterations < cold_iterations);
 }

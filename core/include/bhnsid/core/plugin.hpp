@@ -107,9 +107,12 @@ class PluginBuilder {
 
   /// `bhnsid run FILE --warm-start DIR`: after INITIAL, `fn` reads this plugin's section of the
   /// newest checkpoint of another run DIR of the same build whose parameters differ only in
-  /// steerable ones (the previous run of a parameter scan). It takes what is a good start for these
-  /// parameters and leaves what they decide (and any convergence history) as INITIAL made it. The
-  /// loop then starts at iteration 1.
+  /// steerable ones (the previous run of a parameter scan), or by one refinement of every parameter
+  /// declared with refines() (the next coarser run of a convergence series: the fields of the
+  /// checkpoint are then on a lattice of twice the spacing, and `fn` interpolates them or keeps
+  /// INITIAL's; a plugin that reads them as they are gets InputError for the sizes, a clear refusal).
+  /// It takes what is a good start for these parameters and leaves what they decide (and any
+  /// convergence history) as INITIAL made it. The loop then starts at iteration 1.
   void warm_start(CheckpointRestoreFn fn);
 
  private:

@@ -15,7 +15,7 @@ struct RunOptions {
   bool force = false;
   bool resume = false;  ///< continue the run in run_directory from its newest checkpoint (bhnsid run --resume)
   /// A run of the same build (converged or not: the log says which) whose parameters differ only in
-  /// steerable ones: each plugin that declared a warm start takes its state from that run's newest
+  /// steerable ones, or by one refinement of the lattice (the next coarser run): each plugin that declared a warm start takes its state from that run's newest
   /// checkpoint (bhnsid run --warm-start).
   std::filesystem::path warm_start;
   std::string command_line;
