@@ -62,6 +62,46 @@ def warm_source(spec: Spec, c: Config) -> Optional[Config]:
     return line[i - 1] if i > 0 else None
 
 
+def coarse_twin(spec: Spec, c: Config) -> Optional[Config]:
+    """c's xhat_A and rho_max on the grid of the sequence with half the points and twice the
+    spacing (the same cube, c's lattice coarsened once: (128, 0.03) for (256, 0.015)). Its
+    converged fields, interpolated, start c nearer its fixed point than a neighbour in rho_max
+    does (docs/performance.md); a scheduler runs c after it."""
+    for g, grid in enumerate(spec.grids):
+        if 2 * grid.n == c.grid.n and abs(grid.dx - 2 * c.grid.dx) <= 1e-12 * grid.dx:
+            return Config(g, grid, c.x_a, c.rho_max)
+    return None
+
+
+def fine_twins(spec: Spec, c: Config) -> List[Config]:
+    """The configurations whose coarse twin c is."""
+    return [Config(g, grid, c.x_a, c.rho_max) for g, grid in enumerate(spec.grids)
+            if coarse_twin(spec, Config(g, grid, c.x_a, c.rho_max)) == c]
+
+
+def twin_run_dir(spec: Spec, c: Config, root: Path) -> Optional[Path]:
+    """c's coarse twin when it has converged and kept its checkpoint."""
+    twin = coarse_twin(spec, c)
+    if twin is None:
+        return None
+    run_dir = root / twin.relative_dir
+    return run_dir if read_outcome(twin, run_dir).status == "converged" and _has_checkpoint(run_dir) else None
+
+
+def still_read(spec: Spec, root: Path, d: Config) -> bool:
+    """A configuration not yet run would start from d's checkpoint: a later one of d's chain whose
+    nearest converged lower neighbour d is, or d's fine twin. A failed one does not hold it: it is
+    run again only when the sequence resumes, from what is there then (tidy_checkpoints)."""
+    d_dir = root / d.relative_dir
+    line = chain(spec, d)
+    for x in line[line.index(d) + 1:] + fine_twins(spec, d):
+        if read_outcome(x, root / x.relative_dir).status != "missing":
+            continue
+        if x.grid_index != d.grid_index or warm_run_dir(spec, x, root) == d_dir:
+            return True
+    return False
+
+
 def warm_run_dir(spec: Spec, c: Config, root: Path) -> Optional[Path]:
     """The nearest lower converged run of c's chain, if any (an unconverged neighbour is passed over)."""
     line = chain(spec, c)
@@ -112,21 +152,43 @@ def up_to_date(spec: Spec, c: Config, run_dir: Path) -> bool:
 
 
 class Progress:
-    """One terminal line: done / running / failed / total and the time left."""
+    """One terminal line: done / running / failed / total and the time left. The time left: each
+    run still to come at the mean cost of the runs of its grid finished in this call (a grid with
+    none yet at the others' cost per point times its n^3 points), in wall time at the parallelism
+    seen so far. A run at n = 256 costs ~5x one at 128, so a count of runs alone misleads."""
 
-    def __init__(self, total: int, stream=sys.stderr):
-        self.total, self.done, self.failed, self.running = total, 0, 0, 0
-        self.skipped = 0  # converged before this call: no measure of the time a run takes
+    def __init__(self, todo: List[Config], skipped: int, stream=sys.stderr):
+        self.total = len(todo) + skipped
+        self.done, self.failed, self.running = skipped, 0, 0
+        self.skipped = skipped  # converged before this call: no measure of the time a run takes
+        self.left = {}  # grid -> runs still to finish
+        for c in todo:
+            self.left[c.grid] = self.left.get(c.grid, 0) + 1
+        self.seconds = {}  # grid -> the timed runs finished here (seconds of each)
         self.start = time.monotonic()
         self.stream = stream
 
+    def finished(self, o: "Outcome"):
+        if o.status == "converged":
+            self.done += 1
+        else:
+            self.failed += 1
+        self.left[o.config.grid] -= 1
+        if o.seconds > 0:  # a run that failed before its timers were written says nothing
+            self.seconds.setdefault(o.config.grid, []).append(o.seconds)
+
+    def seconds_left(self, elapsed: float) -> Optional[float]:
+        work_done = sum(sum(s) for s in self.seconds.values())
+        if work_done <= 0 or not any(self.left.values()):
+            return None
+        per_point = work_done / sum(len(s) * g.n ** 3 for g, s in self.seconds.items())
+        work_left = sum(n * (sum(self.seconds[g]) / len(self.seconds[g]) if g in self.seconds else per_point * g.n ** 3)
+                        for g, n in self.left.items())
+        return work_left * elapsed / work_done
+
     def show(self, note: str = ""):
-        elapsed = time.monotonic() - self.start
-        finished = self.done + self.failed
-        ran_here = finished - self.skipped
-        left = ""
-        if ran_here > 0 and self.running + (self.total - finished) > 0:
-            left = f", about {elapsed / ran_here * (self.total - finished) / 60:.1f} min left"
+        seconds = self.seconds_left(time.monotonic() - self.start)
+        left = f", about {seconds / 60:.1f} min left" if seconds is not None else ""
         print(f"sequence: {self.done} done, {self.running} running, {self.failed} failed of {self.total}{left}"
               f"{' - ' + note if note else ''}", file=self.stream, flush=True)
 
@@ -173,18 +235,25 @@ def _bridge(bhnsid: str, spec: Spec, root: Path, c: Config, source: Config, log,
 
 def run_one(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = True) -> Outcome:
     """Runs one configuration in its run directory (the pool's worker and a SLURM array task alike),
-    warm-started from its nearest converged lower-rho_max neighbour when there is one."""
+    warm-started from its converged coarse twin, else from its nearest converged lower-rho_max
+    neighbour, when there is one."""
     run_dir = root / c.relative_dir
     run_dir.parent.mkdir(parents=True, exist_ok=True)
+    twin = twin_run_dir(spec, c, root) if warm else None
     source = warm_run_dir(spec, c, root) if warm else None
     with open(str(run_dir) + ".out", "w") as log:
-        rc = _run(bhnsid, spec, c, run_dir, source, log)
+        rc = 1
+        if twin is not None:
+            rc = _run(bhnsid, spec, c, run_dir, twin, log)
+            if rc in (1, 2):
+                print(f"bhnsid sequence: the run from the coarser {twin} ended with exit {rc}; starting from "
+                      f"{source or 'its own initial guess'} instead", file=log, flush=True)
+        if rc in (1, 2):
+            rc = _run(bhnsid, spec, c, run_dir, source, log)
         # Exit 1 (the run failed) or 2 (the start refused); a signal (exit >= 128, or negative: the
         # user's Ctrl-C, a job's time limit) stops here instead of starting the run again.
         if rc == 1 and source is not None:
-            line = chain(spec, c)
-            source_config = next(d for d in line if root / d.relative_dir == source)
-            rc = _bridge(bhnsid, spec, root, c, source_config, log, BRIDGE_HALVINGS)
+            rc = _bridge(bhnsid, spec, root, c, warm_source_config(spec, c, root, source), log, BRIDGE_HALVINGS)
         if rc in (1, 2) and source is not None:
             # The neighbour refused as a start (another build since, a damaged checkpoint), or the
             # run failed from it and from the bridges (the cold start, below the sigma-model's
@@ -195,21 +264,27 @@ def run_one(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = True) -
             _run(bhnsid, spec, c, run_dir, None, log)
     outcome = read_outcome(c, run_dir)
     if outcome.status == "converged":
-        # A run's checkpoints (2.3 GB each at n = 256) serve only the next run of its chain: the
-        # newest is kept until that one has converged (from it or cold), none for the last of a
-        # chain or when nothing warm-starts (--cold).
-        if source is not None:
-            drop_checkpoints(source)
-        if chain(spec, c)[-1] == c or not warm:
-            drop_checkpoints(run_dir)
-        else:
+        # A run's checkpoints (2.3 GB each at n = 256) serve only the warm starts of the next run of
+        # its chain and of its fine twin: the newest is kept until those have converged (from it or
+        # otherwise), none when nothing warm-starts (--cold).
+        for d in (coarse_twin(spec, c), warm_source_config(spec, c, root, source)):
+            if d is not None and not still_read(spec, root, d):
+                drop_checkpoints(root / d.relative_dir)
+        if warm and still_read(spec, root, c):
             keep_newest_checkpoint(run_dir)
+        else:
+            drop_checkpoints(run_dir)
     else:
         # A failed configuration is run again from its start (--force) when the sequence resumes:
         # its last state would only fill the disk (fifty of them at n = 256 are more than this
         # project's machine holds); its log and summary.json say why it failed.
         drop_checkpoints(run_dir)
     return outcome
+
+
+def warm_source_config(spec: Spec, c: Config, root: Path, source: Optional[Path]) -> Optional[Config]:
+    """The configuration of c's chain whose run directory `source` is."""
+    return next((d for d in chain(spec, c) if root / d.relative_dir == source), None)
 
 
 def _checkpoint_files(run_dir: Path) -> List[Path]:
@@ -258,9 +333,9 @@ def tidy_checkpoints(spec: Spec, root: Path, todo: List[Config], warm: bool = Tr
     needed = set()
     if warm:
         for c in todo:
-            source = warm_run_dir(spec, c, root)
-            if source is not None:
-                needed.add(source)
+            for source in (warm_run_dir(spec, c, root), twin_run_dir(spec, c, root)):
+                if source is not None:
+                    needed.add(source)
     freed = 0
     for c in configurations(spec):
         run_dir = root / c.relative_dir
@@ -287,8 +362,7 @@ def run_all(bhnsid: str, spec: Spec, root: Path, jobs: int, stream=sys.stderr, w
         else:
             todo.append(c)
     freed = tidy_checkpoints(spec, root, todo, warm)
-    progress = Progress(len(todo) + len(outcomes), stream)
-    progress.done = progress.skipped = len(outcomes)
+    progress = Progress(todo, len(outcomes), stream)
     if outcomes:
         progress.show(f"{len(outcomes)} already converged, skipped")
     if freed:
@@ -299,9 +373,10 @@ def run_all(bhnsid: str, spec: Spec, root: Path, jobs: int, stream=sys.stderr, w
         queue = list(todo)
 
         def ready(c: Config) -> bool:
-            # A run waits for the neighbour it would warm-start from (queued or running).
-            source = warm_source(spec, c) if warm else None
-            return source is None or (source not in queue and source not in pending.values())
+            # A run waits for the runs it would warm-start from (queued or running): its neighbour in
+            # rho_max and its coarse twin.
+            sources = [warm_source(spec, c), coarse_twin(spec, c)] if warm else []
+            return all(s is None or (s not in queue and s not in pending.values()) for s in sources)
 
         while queue or pending:
             while len(pending) < max(1, jobs):
@@ -316,10 +391,7 @@ def run_all(bhnsid: str, spec: Spec, root: Path, jobs: int, stream=sys.stderr, w
                 del pending[f]
                 o = f.result()
                 outcomes[o.config] = o
-                if o.status == "converged":
-                    progress.done += 1
-                else:
-                    progress.failed += 1
+                progress.finished(o)
                 progress.running = len(pending)
                 progress.show(f"{o.config.relative_dir}: {o.status}" + (f" ({o.message[:120]})" if o.message else ""))
     return [outcomes[c] for c in configurations(spec)]

@@ -1,6 +1,8 @@
 """A sequence on a SLURM cluster: one job array per rho_max rank (array r holds the r-th rho_max of
 every chain of equal grid and xhat_A, so each run starts after the neighbour it warm-starts from;
---dependency=afterany on array r - 1), and the reduction as a job after all of them. Every task runs
+--dependency=afterany on array r - 1; the runs of grids with a coarse twin in a second array of the
+rank, after the first, so that they start from their twins as on the local pool), and the reduction
+as a job after all of them. Every task runs
 `bhnsid-sequence FILE --output ROOT --task LIST:K`, the same code as the local pool (runs.run_one), so
 a resubmission skips what converged and the cluster's results are the local pool's."""
 import hashlib
@@ -16,7 +18,7 @@ from pathlib import Path
 from typing import Dict, List, Optional
 
 from .report import write_atomic
-from .runs import Config, configurations, settings, up_to_date
+from .runs import Config, coarse_twin, configurations, settings, up_to_date
 from .spec import Spec
 
 
@@ -113,25 +115,31 @@ def write_scripts(tool: str, bhnsid: str, spec: Spec, root: Path, opt: Options) 
     mem_by_grid: Dict[int, int] = {}
     jobs = []
     common = [tool, str(spec.file.resolve()), "--output", str(root.resolve()), "--bhnsid", bhnsid]
-    for r, configs in enumerate(pending_by_rank(spec, root)):
-        if not configs:
-            continue
-        for c in configs:
-            if c.grid_index not in mem_by_grid:
-                mem_by_grid[c.grid_index] = memory_request_mib(bhnsid, spec, c)
-        mem = max(mem_by_grid[c.grid_index] for c in configs)
-        tasks = folder / f"rank{r}.tasks"
-        write_atomic(tasks, "".join(f"{c.relative_dir}\n" for c in configs))
-        cmd = common + (["--cold"] if opt.cold else [])
-        text = _header(f"{prefix}-rho{r}", str((folder / f"rank{r}_%a.out").resolve()), cpus, mem, opt,
-                       len(configs))
-        text += [f"# rho_max = {spec.rho_max[r]:g} of every chain: {len(configs)} run(s); after rank {r - 1} (warm starts)",
-                 "exec " + " ".join(shlex.quote(w) for w in cmd) + " --task " + shlex.quote(f"{tasks.resolve()}:")
-                 + '"$SLURM_ARRAY_TASK_ID"']
-        script = folder / f"rank{r}.sh"
-        write_atomic(script, "\n".join(text) + "\n")
-        os.chmod(script, 0o755)
-        jobs.append({"script": script, "kind": "runs", "tasks": len(configs)})
+    for r, pending in enumerate(pending_by_rank(spec, root)):
+        # Runs with a coarse twin (none with --cold) in an array of their own after the rest of the rank.
+        fine = [c for c in pending if not opt.cold and coarse_twin(spec, c) is not None]
+        parts = [("", [c for c in pending if c not in fine], f"after rank {r - 1} (warm starts)"),
+                 ("f", fine, f"after rank{r} (their coarse twins) and so after rank {r - 1}")]
+        for suffix, configs, after in parts:
+            if not configs:
+                continue
+            for c in configs:
+                if c.grid_index not in mem_by_grid:
+                    mem_by_grid[c.grid_index] = memory_request_mib(bhnsid, spec, c)
+            mem = max(mem_by_grid[c.grid_index] for c in configs)
+            name = f"rank{r}{suffix}"
+            tasks = folder / f"{name}.tasks"
+            write_atomic(tasks, "".join(f"{c.relative_dir}\n" for c in configs))
+            cmd = common + (["--cold"] if opt.cold else [])
+            text = _header(f"{prefix}-rho{r}{suffix}", str((folder / f"{name}_%a.out").resolve()), cpus, mem, opt,
+                           len(configs))
+            text += [f"# rho_max = {spec.rho_max[r]:g}: {len(configs)} run(s); {after}",
+                     "exec " + " ".join(shlex.quote(w) for w in cmd) + " --task " + shlex.quote(f"{tasks.resolve()}:")
+                     + '"$SLURM_ARRAY_TASK_ID"']
+            script = folder / f"{name}.sh"
+            write_atomic(script, "\n".join(text) + "\n")
+            os.chmod(script, 0o755)
+            jobs.append({"script": script, "kind": "runs", "tasks": len(configs)})
     reduce_text = _header(f"{prefix}-reduce", str((folder / "reduce.out").resolve()), 1, 1024, opt)
     reduce_text += ["# splines, minima, error model, tables and figures of whatever converged",
                     "exec " + " ".join(shlex.quote(w) for w in common + ["--reduce-only"])]

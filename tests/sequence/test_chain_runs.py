@@ -8,9 +8,12 @@ from. At n = 256 one checkpoint is 2.3 GB: a sequence that kept more filled this
 Bridges: a warm start that fails is taken again through the midpoint in rho_max, twice halved at
 most, before the run starts cold.
 
+Twins: a run on a grid with a coarse twin in the sequence (half the points, twice the spacing)
+starts from the twin's converged run, after it; from its neighbour in rho_max when that fails.
+
 The runs are a stand-in executable that writes what `bhnsid run` writes (two checkpoints and
 summary.json), and fails where told or when it starts too far from its neighbour, so the test needs
-no build. usage: test_chain_runs.py [Checkpoints|Bridges]"""
+no build. usage: test_chain_runs.py [Checkpoints|Bridges|Twins|TimeLeft]"""
 import io
 import json
 import os
@@ -21,7 +24,7 @@ import unittest
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "sequence"))
-from bhnsid_sequence.runs import Config, run_all, run_one, tidy_checkpoints  # noqa: E402
+from bhnsid_sequence.runs import Config, Outcome, Progress, run_all, run_one, tidy_checkpoints  # noqa: E402
 from bhnsid_sequence.spec import Grid, Spec  # noqa: E402
 
 # A stand-in for bhnsid run: converges unless rho_max is listed in $FAKE_FAIL; records where it
@@ -44,6 +47,9 @@ warm = args[args.index("--warm-start") + 1] if "--warm-start" in args else ""
 failed = rho in os.environ.get("FAKE_FAIL", "").split()
 # A warm start from a neighbour further than $FAKE_MAX_STEP in rho_max fails (a step over the fold).
 if warm and abs(float(rho) - float(Path(warm).name[3:])) > float(os.environ.get("FAKE_MAX_STEP", "1")):
+    failed = True
+# With $FAKE_COARSE_FAILS set, so does one from another grid's run (the coarse twin).
+if warm and os.environ.get("FAKE_COARSE_FAILS") and Path(warm).parents[1].name != out.parents[1].name:
     failed = True
 (out / "summary.json").write_text(json.dumps({
     "status": "failed" if failed else "converged", "message": "Roche lobe overflow" if failed else "",
@@ -71,6 +77,7 @@ class FakeChain(unittest.TestCase):
                          rho_max=self.rho_max, targets=[0.6], grids=[Grid(32, 0.1)])
         os.environ["FAKE_FAIL"] = ""
         os.environ["FAKE_MAX_STEP"] = "1"
+        os.environ["FAKE_COARSE_FAILS"] = ""
 
     def tearDown(self):
         self.tmp.cleanup()
@@ -185,6 +192,63 @@ class Bridges(FakeChain):
         self.assertEqual([o.status for o in outcomes], ["converged", "converged"])
         self.assertEqual((self.chain_dir(0.3) / "warm_from").read_text(), "", "cold after two halvings")
         self.assertIn("starting cold", Path(str(self.chain_dir(0.3)) + ".out").read_text())
+
+
+class Twins(FakeChain):
+    """Grid 0 (64, 0.05) has a coarse twin, grid 1 (32, 0.1): the same cube coarsened once."""
+    rho_max = [0.1, 0.2]
+
+    def setUp(self):
+        super().setUp()
+        self.spec.grids = [Grid(64, 0.05), Grid(32, 0.1)]
+
+    def at(self, g, rho):
+        return self.root / Config(g, self.spec.grids[g], 0.2, rho).relative_dir
+
+    def test_the_fine_run_starts_from_its_coarse_twin(self):
+        outcomes = run_all(str(self.fake), self.spec, self.root, jobs=2, stream=io.StringIO())
+        self.assertEqual([o.status for o in outcomes], ["converged"] * 4)
+        for rho in (0.1, 0.2):
+            self.assertEqual((self.at(0, rho) / "warm_from").read_text(), str(self.at(1, rho)))
+        self.assertEqual((self.at(1, 0.2) / "warm_from").read_text(), str(self.at(1, 0.1)), "the coarse chain as before")
+        self.assertEqual([names(self.at(g, r)) for g in (0, 1) for r in (0.1, 0.2)], [[]] * 4, "no checkpoint left")
+
+    def test_a_failed_start_from_the_twin_falls_back_to_the_neighbour(self):
+        os.environ["FAKE_COARSE_FAILS"] = "1"
+        outcomes = run_all(str(self.fake), self.spec, self.root, jobs=1, stream=io.StringIO())
+        self.assertEqual([o.status for o in outcomes], ["converged"] * 4)
+        self.assertEqual((self.at(0, 0.1) / "warm_from").read_text(), "", "the chain's first: cold")
+        self.assertEqual((self.at(0, 0.2) / "warm_from").read_text(), str(self.at(0, 0.1)))
+        self.assertIn("the run from the coarser", Path(str(self.at(0, 0.2)) + ".out").read_text())
+        self.assertEqual([names(self.at(g, r)) for g in (0, 1) for r in (0.1, 0.2)], [[]] * 4)
+
+    def test_the_twin_keeps_its_checkpoint_until_the_fine_run_has_read_it(self):
+        coarse = Config(1, self.spec.grids[1], 0.2, 0.2)  # the end of the coarse chain
+        self.assertEqual(run_one(str(self.fake), self.spec, self.root, coarse).status, "converged")
+        self.assertEqual(names(self.at(1, 0.2)), ["checkpoint.000005"], "its fine twin is still to run")
+        fine = Config(0, self.spec.grids[0], 0.2, 0.2)
+        self.assertEqual(tidy_checkpoints(self.spec, self.root, [fine]), 0)
+        self.assertEqual(run_one(str(self.fake), self.spec, self.root, fine).status, "converged")
+        self.assertEqual((self.at(0, 0.2) / "warm_from").read_text(), str(self.at(1, 0.2)))
+        self.assertEqual(names(self.at(1, 0.2)), [], "read: gone")
+
+
+class TimeLeft(unittest.TestCase):
+    """The progress line's estimate weighs each run still to come by its grid's cost."""
+
+    def test_each_grid_at_its_own_cost_and_an_unmeasured_one_by_its_points(self):
+        fine, coarse, other = Grid(64, 0.05), Grid(32, 0.1), Grid(48, 0.05)
+        todo = [Config(g, grid, 0.2, r) for g, grid in enumerate((fine, coarse, other)) for r in (0.1, 0.2)]
+        p = Progress(todo, skipped=3, stream=io.StringIO())
+        self.assertIsNone(p.seconds_left(10.0), "nothing timed yet")
+        p.finished(Outcome(todo[2], "converged", seconds=4.0))
+        p.finished(Outcome(todo[0], "converged", seconds=30.0))
+        p.finished(Outcome(todo[4], "failed", seconds=0.0))  # no timers: not a measure
+        # Left: one fine (30 s), one coarse (4 s), one other at the cost per point of the two timed
+        # runs, 34 / (64^3 + 32^3), times 48^3; 34 s of runs in 17 s of wall (two at a time).
+        per_point = 34.0 / (64 ** 3 + 32 ** 3)
+        self.assertAlmostEqual(p.seconds_left(17.0), (30 + 4 + per_point * 48 ** 3) / 2)
+        self.assertEqual((p.done, p.failed, p.total), (5, 1, 9))
 
 
 if __name__ == "__main__":

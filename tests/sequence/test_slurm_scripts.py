@@ -109,6 +109,19 @@ check(bad.returncode == 2 and "--task nowhere:0" in bad.stderr, "a bad task is o
 no = subprocess.run([bhnsid, "sequence", str(spec), "--output", str(work / "y"), "--slurm"], capture_output=True, text=True,
                     env=dict(os.environ, PATH="/nonexistent"))
 check(no.returncode == 2 and "no sbatch" in no.stderr, "no sbatch: one error naming it")
+# Grids with a coarse twin (48, 0.08) of (24, 0.16): their runs in a second array of the rank, after
+# their twins' array and before the next rank.
+twins = work / "twins.yaml"
+twins.write_text(spec.read_text().replace("{n: 20, dx: 0.192}", "{n: 48, dx: 0.08}"))
+t = subprocess.run([bhnsid, "sequence", str(twins), "--output", str(work / "twins"), "--slurm", "--emit-only"],
+                   capture_output=True, text=True)
+tf = work / "twins" / "slurm"
+check(t.returncode == 0 and sorted(p.name for p in tf.glob("rank0*.tasks")) == ["rank0.tasks", "rank0f.tasks"]
+      and all(line.startswith("grid1_n48") for line in (tf / "rank0f.tasks").read_text().split())
+      and all(line.startswith("grid0_n24") for line in (tf / "rank0.tasks").read_text().split()),
+      "the fine grid's runs of a rank in an array of their own")
+order = [line.split("=")[0] for line in t.stdout.splitlines() if "=$(" in line]
+check(order[:4] == ["rank0", "rank0f", "rank1", "rank1f"], f"the twins' array before the fine one, rank by rank: {order}")
 e = subprocess.run([bhnsid, "sequence", str(spec), "--emit-only"], capture_output=True, text=True, cwd=work)
 check(e.returncode == 2 and "--emit-only" in e.stderr, "--emit-only without --slurm is refused")
 check.exit()
