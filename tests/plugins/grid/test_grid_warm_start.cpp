@@ -72,14 +72,21 @@ void fill(Grid& g, int field, int level) {
   g.fill_ghosts(field, level);
 }
 
+// A grid of u = profile on every level, saved: what a converged run of that lattice leaves.
+std::unique_ptr<UniformGrid> saved_grid(int n, double dx, MemoryCheckpoint& checkpoint, int& field) {
+  auto g = make_grid(n, dx);
+  field = add_u(*g);
+  for (int l = 0; l < g->num_levels(); ++l) fill(*g, field, l);
+  g->save(checkpoint);
+  return g;
+}
+
 }  // namespace
 
 TEST_CASE("plugins.grid.warm_start_interpolates_the_next_coarser_lattice", "[plugins][grid][warm]") {
-  auto coarse = make_grid(16, 0.2);
-  const int cf = add_u(*coarse);
-  for (int l = 0; l < coarse->num_levels(); ++l) fill(*coarse, cf, l);
   MemoryCheckpoint checkpoint;
-  coarse->save(checkpoint);
+  int cf = 0;
+  auto coarse = saved_grid(16, 0.2, checkpoint, cf);
 
   auto fine = make_grid(32, 0.1);
   const int ff = add_u(*fine);
@@ -111,11 +118,9 @@ TEST_CASE("plugins.grid.warm_start_interpolates_the_next_coarser_lattice", "[plu
 }
 
 TEST_CASE("plugins.grid.warm_start_of_the_same_lattice_restores_and_of_another_refuses", "[plugins][grid][warm]") {
-  auto source = make_grid(16, 0.2);
-  const int sf = add_u(*source);
-  for (int l = 0; l < source->num_levels(); ++l) fill(*source, sf, l);
   MemoryCheckpoint checkpoint;
-  source->save(checkpoint);
+  int sf = 0;
+  auto source = saved_grid(16, 0.2, checkpoint, sf);
 
   auto same = make_grid(16, 0.2);
   const int id = add_u(*same);
