@@ -2,8 +2,10 @@
 configuration as an ordinary run, then the splines, minima, error model, tables and figures
 (sequence/README.md)."""
 import argparse
+import fcntl
 import os
 import shutil
+import socket
 import sys
 from pathlib import Path
 
@@ -14,6 +16,24 @@ from .slurm import Options, SlurmError, check_not_queued, submit, task_config, w
 from .spec import SpecError, read_spec
 
 MARKER = ".bhnsid-sequence"
+LOCK = ".bhnsid-sequence.lock"
+
+
+def hold_lock(root: Path):
+    """The sequence directory's lock (an open file, held until this process exits), or None when
+    another `bhnsid sequence` holds it: two pools in one directory would run the same configurations
+    into the same run directories. A SLURM array task and --reduce-only do not take it."""
+    lock = open(root / LOCK, "a+")
+    try:
+        fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        lock.close()
+        return None
+    lock.seek(0)
+    lock.truncate()
+    lock.write(f"pid {os.getpid()} on {socket.gethostname()}\n")
+    lock.flush()
+    return lock
 
 
 def main(argv=None) -> int:
@@ -62,6 +82,14 @@ def main(argv=None) -> int:
     root.mkdir(parents=True, exist_ok=True)
     if not (root / MARKER).exists():  # SLURM's array tasks all pass here: written once
         write_atomic(root / MARKER, f"{Path(args.file).resolve()}\n")
+    lock = None
+    if not args.task and not args.reduce_only:
+        lock = hold_lock(root)
+        if lock is None:
+            holder = (root / LOCK).read_text().strip() or "a process"
+            print(f"bhnsid: error: {root}: another bhnsid sequence works in it ({holder}); wait for it to end or "
+                  f"stop it, or choose another --output", file=sys.stderr)
+            return 2
     if args.task:
         try:
             c = task_config(spec, args.task)

@@ -56,7 +56,7 @@ def parabola_minimum(x: Sequence[float], y: Sequence[float]) -> Minimum:
     x = np.asarray(x, float)
     y = np.asarray(y, float)
     if x.size < 3:
-        return Minimum(None, None, (), f"{x.size} points, a parabola needs 3")
+        return Minimum(None, None, (), f"{x.size} point{'' if x.size == 1 else 's'}, a parabola needs 3")
     i = int(np.argmin(y))
     if i == 0 or i == x.size - 1:
         return Minimum(None, None, (), "no interior minimum (the smallest value is at an end of the sequence)")
