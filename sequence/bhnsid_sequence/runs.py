@@ -353,7 +353,9 @@ def tidy_checkpoints(spec: Spec, root: Path, todo: List[Config], warm: bool = Tr
 
 def run_all(bhnsid: str, spec: Spec, root: Path, jobs: int, stream=sys.stderr, warm: bool = True) -> List[Outcome]:
     """Runs every configuration not yet converged, `jobs` at a time; a failed configuration (the
-    Roche limit, no convergence) is an outcome, never an exception."""
+    Roche limit, no convergence) is an outcome, never an exception. The grid of fewest points
+    first: its runs are the cheapest, so the first complete grid (one grid's minima) comes early in
+    a sequence of hours, and a fine run's coarse twin has run before it is due."""
     todo, outcomes = [], {}
     for c in configurations(spec):
         run_dir = root / c.relative_dir
@@ -370,7 +372,7 @@ def run_all(bhnsid: str, spec: Spec, root: Path, jobs: int, stream=sys.stderr, w
 
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
         pending = {}
-        queue = list(todo)
+        queue = sorted(todo, key=lambda c: c.grid.n ** 3)  # stable: the file's order within a grid
 
         def ready(c: Config) -> bool:
             # A run waits for the runs it would warm-start from (queued or running): its neighbour in

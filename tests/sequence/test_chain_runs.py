@@ -213,6 +213,13 @@ class Twins(FakeChain):
         self.assertEqual((self.at(1, 0.2) / "warm_from").read_text(), str(self.at(1, 0.1)), "the coarse chain as before")
         self.assertEqual([names(self.at(g, r)) for g in (0, 1) for r in (0.1, 0.2)], [[]] * 4, "no checkpoint left")
 
+    def test_the_coarse_grid_runs_first(self):
+        self.spec.grids = [Grid(64, 0.05), Grid(48, 0.05), Grid(32, 0.1)]  # finest first, as the file has them
+        out = io.StringIO()
+        run_all(str(self.fake), self.spec, self.root, jobs=1, stream=out)
+        order = [line.split(" - ")[1].split("/")[0] for line in out.getvalue().splitlines() if " - " in line]
+        self.assertEqual(order, ["grid2_n32_dx0.1"] * 2 + ["grid1_n48_dx0.05"] * 2 + ["grid0_n64_dx0.05"] * 2)
+
     def test_a_failed_start_from_the_twin_falls_back_to_the_neighbour(self):
         os.environ["FAKE_COARSE_FAILS"] = "1"
         outcomes = run_all(str(self.fake), self.spec, self.root, jobs=1, stream=io.StringIO())
