@@ -97,6 +97,22 @@ class PaperComparison(unittest.TestCase):
         text = comparison(3.0, [0.75, 0.85], isco, "n256")
         self.assertIn("physics-notes §10.2) | -0.0089 ± 0.00053 | -0.0089 ± 0.00053 | 0.00 |", text)
 
+    def test_the_halved_reading_maps_the_stated_definition_onto_the_printed_column(self):
+        # (M_ADM - 2 M_BH) / (2 M0) = E_b / 2 - (mu - 1)/2 M_NS/M0: twice the printed mu = 1 value, and for
+        # mu = 3 twice (printed + (mu - 1)/2 M_NS/M0), land on the printed value at distance zero.
+        isco = self.isco(1.0)
+        isco["0.75"]["E_b"]["E_b"] = {"value": -0.00706, "error": 0.0005}
+        text = comparison(1.0, [0.75], isco, "n256")
+        self.assertIn("(validation §14) | -0.00353 ± 0.00025 | -0.00353 ± 0.00025 | 0.00 |", text)
+        isco = self.isco(3.0)
+        isco["0.75"]["E_b"]["E_b"] = {"value": 2 * (-0.94738 + 0.93848), "error": 0.00106}
+        text = comparison(3.0, [0.75], isco, "n256")
+        self.assertIn("(validation §14) | -0.94738 ± 0.00053 | -0.94738 ± 0.00053 | 0.00 |", text)
+        # Without M_NS/M0 of the row there is no such row, rather than a guess.
+        isco = self.isco(3.0)
+        isco["0.8"] = isco.pop("0.85")
+        self.assertNotIn("validation §14) | -0.93846", comparison(3.0, [0.8], isco, "n256"))
+
     def test_missing_minima_are_said_not_invented(self):
         text = comparison(1.0, [0.6], {"0.6": {"E_b": {"reason": "no interior minimum"}, "J": {"reason": "x"}}}, "g")
         self.assertIn("no interior minimum", text)
