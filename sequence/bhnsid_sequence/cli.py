@@ -44,6 +44,8 @@ def main(argv=None) -> int:
     p.add_argument("--reduce-only", action="store_true", help="only reduce the runs already there")
     p.add_argument("--cold", action="store_true",
                    help="start every run from its own initial guess (no warm start from a converged neighbour)")
+    p.add_argument("--retry-failed", action="store_true",
+                   help="run failed configurations again even where their start has not changed since they failed")
     p.add_argument("--bhnsid", help="the bhnsid executable (default: the one beside this tool)")
     p.add_argument("--slurm", action="store_true",
                    help="submit the runs as SLURM job arrays (one per rho_max rank) and the reduction as a job after them")
@@ -105,7 +107,8 @@ def main(argv=None) -> int:
             if not args.emit_only and shutil.which("squeue"):
                 check_not_queued(spec, root)
             jobs = write_scripts(tool, bhnsid, spec, root,
-                                 Options(partition=args.partition, time=args.time, account=args.account, cold=args.cold))
+                                 Options(partition=args.partition, time=args.time, account=args.account, cold=args.cold,
+                                         retry_failed=args.retry_failed))
             runs = sum(j["tasks"] for j in jobs if j["kind"] == "runs")
             if runs == 0 and not args.emit_only:
                 print("sequence: every configuration has converged: nothing to submit; reducing here")
@@ -122,7 +125,7 @@ def main(argv=None) -> int:
     if args.reduce_only or args.slurm:
         outcomes = [read_outcome(c, root / c.relative_dir) for c in configurations(spec)]
     else:
-        outcomes = run_all(bhnsid, spec, root, args.jobs, warm=not args.cold)
+        outcomes = run_all(bhnsid, spec, root, args.jobs, warm=not args.cold, retry_failed=args.retry_failed)
     table = at_targets(spec, outcomes)
     found = minima(spec, table)
     try:

@@ -139,9 +139,31 @@ def read_outcome(c: Config, run_dir: Path) -> Outcome:
 
 def up_to_date(spec: Spec, c: Config, run_dir: Path) -> bool:
     """Converged with exactly these settings (the run's own record of its command)."""
-    out = read_outcome(c, run_dir)
-    if out.status != "converged":
+    return read_outcome(c, run_dir).status == "converged" and same_settings(spec, c, run_dir)
+
+
+def failed_alike(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = True) -> bool:
+    """c failed with exactly these settings, and nothing it would start from has changed since: the
+    bhnsid executable is older than the failure, and so are the runs of its converged coarse twin
+    and nearest converged lower neighbour (a run that converged later, or a new build, is a new
+    start). The runs are deterministic, so running c again would repeat every attempt (twin,
+    neighbour, bridges, cold) and fail the same way: at n = 256 an edge configuration's attempts
+    cost up to half an hour. A resumed sequence keeps such a failure; --retry-failed runs it."""
+    run_dir = root / c.relative_dir
+    if read_outcome(c, run_dir).status != "failed" or not same_settings(spec, c, run_dir):
         return False
+    try:
+        failed_at = (run_dir / "summary.json").stat().st_mtime_ns
+        if os.stat(bhnsid).st_mtime_ns >= failed_at:
+            return False
+        starts = (twin_run_dir(spec, c, root), warm_run_dir(spec, c, root)) if warm else ()
+        return all(d is None or (d / "summary.json").stat().st_mtime_ns < failed_at for d in starts)
+    except OSError:
+        return False
+
+
+def same_settings(spec: Spec, c: Config, run_dir: Path) -> bool:
+    """The run in run_dir was made with c's settings (its own record of its command)."""
     try:
         line = json.loads((run_dir / "summary.json").read_text())["provenance"]["command_line"]
     except (OSError, ValueError, KeyError):
@@ -157,9 +179,9 @@ class Progress:
     none yet at the others' cost per point times its n^3 points), in wall time at the parallelism
     seen so far. A run at n = 256 costs ~5x one at 128, so a count of runs alone misleads."""
 
-    def __init__(self, todo: List[Config], skipped: int, stream=sys.stderr):
-        self.total = len(todo) + skipped
-        self.done, self.failed, self.running = skipped, 0, 0
+    def __init__(self, todo: List[Config], skipped: int, stream=sys.stderr, kept_failed: int = 0):
+        self.total = len(todo) + skipped + kept_failed
+        self.done, self.failed, self.running = skipped, kept_failed, 0
         self.skipped = skipped  # converged before this call: no measure of the time a run takes
         self.left = {}  # grid -> runs still to finish
         for c in todo:
@@ -215,6 +237,12 @@ def _bridge(bhnsid: str, spec: Spec, root: Path, c: Config, source: Config, log,
     if halvings == 0 or mid.rho_max in (source.rho_max, c.rho_max):
         return 1
     mid_dir = root / mid.relative_dir
+    if mid.rho_max in spec.rho_max and failed_alike(bhnsid, spec, root, mid):
+        # The midpoint is a configuration that failed from this same source (and more) and nothing
+        # has changed since: as a bridge it would fail again.
+        print(f"bhnsid sequence: the step from rho_max = {source.rho_max:g} failed; the midpoint "
+              f"rho_max = {mid.rho_max:g} failed before from the same start, so no bridge", file=log, flush=True)
+        return 1
     print(f"bhnsid sequence: the step from rho_max = {source.rho_max:g} failed; bridging through "
           f"rho_max = {mid.rho_max:g} ({mid_dir})", file=log, flush=True)
     if not (up_to_date(spec, mid, mid_dir) and _has_checkpoint(mid_dir)):
@@ -351,22 +379,31 @@ def tidy_checkpoints(spec: Spec, root: Path, todo: List[Config], warm: bool = Tr
     return freed
 
 
-def run_all(bhnsid: str, spec: Spec, root: Path, jobs: int, stream=sys.stderr, warm: bool = True) -> List[Outcome]:
+def run_all(bhnsid: str, spec: Spec, root: Path, jobs: int, stream=sys.stderr, warm: bool = True,
+            retry_failed: bool = False) -> List[Outcome]:
     """Runs every configuration not yet converged, `jobs` at a time; a failed configuration (the
-    Roche limit, no convergence) is an outcome, never an exception. The grid of fewest points
+    Roche limit, no convergence) is an outcome, never an exception, and is run again on a resume
+    only when its start has changed (failed_alike) or with retry_failed. The grid of fewest points
     first: its runs are the cheapest, so the first complete grid (one grid's minima) comes early in
     a sequence of hours, and a fine run's coarse twin has run before it is due."""
-    todo, outcomes = [], {}
+    todo, outcomes, kept = [], {}, []
     for c in configurations(spec):
         run_dir = root / c.relative_dir
         if up_to_date(spec, c, run_dir):
             outcomes[c] = read_outcome(c, run_dir)
+        elif not retry_failed and failed_alike(bhnsid, spec, root, c, warm):
+            kept.append(c)
         else:
             todo.append(c)
+    converged = len(outcomes)
+    for c in kept:
+        outcomes[c] = read_outcome(c, root / c.relative_dir)
     freed = tidy_checkpoints(spec, root, todo, warm)
-    progress = Progress(todo, len(outcomes), stream)
-    if outcomes:
-        progress.show(f"{len(outcomes)} already converged, skipped")
+    progress = Progress(todo, converged, stream, kept_failed=len(kept))
+    if converged:
+        progress.show(f"{converged} already converged, skipped")
+    if kept:
+        progress.show(f"{len(kept)} failed before from the same start, not run again (--retry-failed runs them)")
     if freed:
         progress.show(f"{freed / 2**30:.1f} GiB of checkpoints no run still to come starts from removed")
 

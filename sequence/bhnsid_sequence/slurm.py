@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Dict, List, Optional
 
 from .report import write_atomic
-from .runs import Config, coarse_twin, configurations, settings, up_to_date
+from .runs import Config, coarse_twin, configurations, failed_alike, settings, up_to_date
 from .spec import Spec
 
 
@@ -32,14 +32,21 @@ class Options:
     time: Optional[str] = None        # --time of every run task, e.g. 2:00:00
     account: Optional[str] = None
     cold: bool = False
+    retry_failed: bool = False
 
 
-def pending_by_rank(spec: Spec, root: Path) -> List[List[Config]]:
-    """The configurations not yet converged, by their rho_max rank along the chain."""
+def pending_by_rank(spec: Spec, root: Path, bhnsid: Optional[str] = None,
+                    opt: Optional[Options] = None) -> List[List[Config]]:
+    """The configurations not yet converged, by their rho_max rank along the chain; as on the local
+    pool, without a failure whose start has not changed (runs.failed_alike) unless retry_failed."""
+    opt = opt or Options()
     ranks = [[] for _ in spec.rho_max]
     for c in configurations(spec):
-        if not up_to_date(spec, c, root / c.relative_dir):
-            ranks[spec.rho_max.index(c.rho_max)].append(c)
+        if up_to_date(spec, c, root / c.relative_dir):
+            continue
+        if bhnsid and not opt.retry_failed and failed_alike(bhnsid, spec, root, c, warm=not opt.cold):
+            continue
+        ranks[spec.rho_max.index(c.rho_max)].append(c)
     return ranks
 
 
@@ -115,7 +122,7 @@ def write_scripts(tool: str, bhnsid: str, spec: Spec, root: Path, opt: Options) 
     mem_by_grid: Dict[int, int] = {}
     jobs = []
     common = [tool, str(spec.file.resolve()), "--output", str(root.resolve()), "--bhnsid", bhnsid]
-    for r, pending in enumerate(pending_by_rank(spec, root)):
+    for r, pending in enumerate(pending_by_rank(spec, root, bhnsid, opt)):
         # Runs with a coarse twin (none with --cold) in an array of their own after the rest of the rank.
         fine = [c for c in pending if not opt.cold and coarse_twin(spec, c) is not None]
         parts = [("", [c for c in pending if c not in fine], f"after rank {r - 1} (warm starts)"),

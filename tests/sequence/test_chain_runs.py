@@ -13,7 +13,7 @@ starts from the twin's converged run, after it; from its neighbour in rho_max wh
 
 The runs are a stand-in executable that writes what `bhnsid run` writes (two checkpoints and
 summary.json), and fails where told or when it starts too far from its neighbour, so the test needs
-no build. usage: test_chain_runs.py [Checkpoints|Bridges|Twins|TimeLeft]"""
+no build. usage: test_chain_runs.py [Checkpoints|Resume|Bridges|Twins|TimeLeft]"""
 import io
 import json
 import os
@@ -148,6 +148,57 @@ class Checkpoints(FakeChain):
         self.assertNotIn("min left", skipped, "no time estimate from runs skipped, none run yet")
         self.assertIn(str(self.fake), shlex.split(json.loads((self.dir(0) / "summary.json").read_text())
                                                   ["provenance"]["command_line"]))
+
+
+class Resume(FakeChain):
+    """A resumed sequence runs a failed configuration again only when its start has changed."""
+    rho_max = [0.1, 0.2, 0.3]
+
+    def resume(self, fail="", **kw):
+        os.environ["FAKE_FAIL"] = fail  # "": run again, 0.2 would now converge
+        out = io.StringIO()
+        return [o.status for o in run_all(str(self.fake), self.spec, self.root, jobs=1, stream=out, **kw)], out.getvalue()
+
+    def later_than_the_failure(self, path):
+        if path.name == "summary.json":  # a neighbour converged again, with the checkpoint a start reads
+            (path.parent / "checkpoints").mkdir(exist_ok=True)
+            (path.parent / "checkpoints" / "checkpoint.000005").write_bytes(b"x")
+        t = (self.chain_dir(0.2) / "summary.json").stat().st_mtime_ns + 10 ** 9
+        os.utime(path, ns=(t, t))
+
+    def back_to_the_past(self, path):
+        os.utime(path, ns=(10 ** 9, 10 ** 9))
+
+    def test_a_failure_from_the_same_start_is_kept(self):
+        self.assertEqual(self.resume("0.2")[0], ["converged", "failed", "converged"])
+        log = Path(str(self.chain_dir(0.2)) + ".out")
+        before = log.stat().st_mtime_ns
+        statuses, out = self.resume()
+        self.assertEqual(statuses, ["converged", "failed", "converged"])
+        self.assertEqual(log.stat().st_mtime_ns, before, "not run again")
+        self.assertIn("1 failed before from the same start, not run again", out)
+        self.assertIn("2 done, 0 running, 1 failed of 3", out)
+
+    def test_no_bridge_through_a_configuration_that_failed_from_the_same_start(self):
+        os.environ["FAKE_MAX_STEP"] = "0.15"  # 0.3 from 0.1 fails; the midpoint 0.2 is a configuration
+        self.assertEqual(self.resume("0.2")[0], ["converged", "failed", "converged"])
+        out = Path(str(self.chain_dir(0.3)) + ".out").read_text()
+        self.assertIn("rho_max = 0.2 failed before from the same start, so no bridge", out)
+        self.assertNotIn("bridging through", out)
+        self.assertEqual((self.chain_dir(0.3) / "warm_from").read_text(), "", "cold, as after a failed bridge")
+
+    def test_a_new_start_a_new_build_or_the_flag_runs_it_again(self):
+        neighbour = self.chain_dir(0.1) / "summary.json"
+        for changed in (neighbour, self.fake, None):
+            (self.chain_dir(0.2) / "summary.json").unlink(missing_ok=True)  # converged in the last round
+            self.assertEqual(self.resume("0.2", retry_failed=True)[0][1], "failed")
+            self.assertEqual(self.resume()[0][1], "failed", "nothing changed since")
+            if changed is None:
+                self.assertEqual(self.resume(retry_failed=True)[0][1], "converged", "--retry-failed")
+                continue
+            self.later_than_the_failure(changed)
+            self.assertEqual(self.resume()[0][1], "converged", f"run again after {changed} changed")
+            self.back_to_the_past(changed)
 
 
 class Bridges(FakeChain):
