@@ -142,17 +142,24 @@ def up_to_date(spec: Spec, c: Config, run_dir: Path) -> bool:
     return read_outcome(c, run_dir).status == "converged" and same_settings(spec, c, run_dir)
 
 
+EVERY_START_TRIED = "bhnsid sequence: failed from every start tried"
+
+
 def failed_alike(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = True) -> bool:
     """c failed with exactly these settings, and nothing it would start from has changed since: the
     bhnsid executable is older than the failure, and so are the runs of its converged coarse twin
     and nearest converged lower neighbour (a run that converged later, or a new build, is a new
-    start). The runs are deterministic, so running c again would repeat every attempt (twin,
-    neighbour, bridges, cold) and fail the same way: at n = 256 an edge configuration's attempts
+    start), and its attempts (twin, neighbour, bridges, cold) all ran to their end. The runs are
+    deterministic, so running c again would repeat every attempt and fail the same way: at n = 256 an edge configuration's attempts
     cost up to half an hour. A resumed sequence keeps such a failure; --retry-failed runs it."""
     run_dir = root / c.relative_dir
     if read_outcome(c, run_dir).status != "failed" or not same_settings(spec, c, run_dir):
         return False
     try:
+        # Its attempts ran to the end: a sequence killed during a bridge or before the cold start
+        # leaves the failure of an earlier attempt, which says nothing about the later ones.
+        if Path(str(run_dir) + ".out").read_text().splitlines()[-1:] != [EVERY_START_TRIED]:
+            return False
         failed_at = (run_dir / "summary.json").stat().st_mtime_ns
         if os.stat(bhnsid).st_mtime_ns >= failed_at:
             return False
@@ -290,6 +297,10 @@ def run_one(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = True) -
             print(f"bhnsid sequence: the run from {source} ended with exit {rc}; starting cold", file=log,
                   flush=True)
             _run(bhnsid, spec, c, run_dir, None, log)
+        if read_outcome(c, run_dir).status == "failed":
+            # Every start was tried to its end (a signal would have stopped the attempts before):
+            # what failed_alike requires before a resume may keep this failure.
+            print(EVERY_START_TRIED, file=log, flush=True)
     outcome = read_outcome(c, run_dir)
     if outcome.status == "converged":
         # A run's checkpoints (2.3 GB each at n = 256) serve only the warm starts of the next run of

@@ -179,6 +179,16 @@ class Resume(FakeChain):
         self.assertIn("1 failed before from the same start, not run again", out)
         self.assertIn("2 done, 0 running, 1 failed of 3", out)
 
+    def test_a_failure_whose_attempts_were_cut_short_runs_again(self):
+        self.resume("0.2")
+        out = Path(str(self.chain_dir(0.2)) + ".out")
+        self.assertEqual(out.read_text().splitlines()[-1], "bhnsid sequence: failed from every start tried")
+        # What a sequence killed during 0.2's bridge or before its cold start leaves: the failure of
+        # its first attempt, the log without the last line.
+        out.write_text("\n".join(out.read_text().splitlines()[:-1]) + "\n")
+        os.utime(self.chain_dir(0.2) / "summary.json")
+        self.assertEqual(self.resume()[0][1], "converged")
+
     def test_no_bridge_through_a_configuration_that_failed_from_the_same_start(self):
         os.environ["FAKE_MAX_STEP"] = "0.15"  # 0.3 from 0.1 fails; the midpoint 0.2 is a configuration
         self.assertEqual(self.resume("0.2")[0], ["converged", "failed", "converged"])
