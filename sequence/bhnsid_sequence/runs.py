@@ -150,8 +150,8 @@ def failed_alike(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = Tr
     bhnsid executable is older than the failure, and so are the runs of its converged coarse twin
     and nearest converged lower neighbour (a run that converged later, or a new build, is a new
     start), and its attempts (twin, neighbour, bridges, cold) all ran to their end. The runs are
-    deterministic, so running c again would repeat every attempt and fail the same way: at n = 256 an edge configuration's attempts
-    cost up to half an hour. A resumed sequence keeps such a failure; --retry-failed runs it."""
+    deterministic, so running c again would repeat every attempt and fail the same way: at n = 256
+    an edge configuration's attempts cost up to half an hour. A resumed sequence keeps such a failure; --retry-failed runs it."""
     run_dir = root / c.relative_dir
     if read_outcome(c, run_dir).status != "failed" or not same_settings(spec, c, run_dir):
         return False
@@ -296,10 +296,10 @@ def run_one(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = True) -
             # every attempt.
             print(f"bhnsid sequence: the run from {source} ended with exit {rc}; starting cold", file=log,
                   flush=True)
-            _run(bhnsid, spec, c, run_dir, None, log)
-        if read_outcome(c, run_dir).status == "failed":
-            # Every start was tried to its end (a signal would have stopped the attempts before):
-            # what failed_alike requires before a resume may keep this failure.
+            rc = _run(bhnsid, spec, c, run_dir, None, log)
+        if rc == 1 and read_outcome(c, run_dir).status == "failed":
+            # Every start was tried to its end, the last one failing by itself (not stopped by a
+            # signal): what failed_alike requires before a resume may keep this failure.
             print(EVERY_START_TRIED, file=log, flush=True)
     outcome = read_outcome(c, run_dir)
     if outcome.status == "converged":
