@@ -58,10 +58,11 @@ def grid_costs(grid_dir: Path) -> dict:
         entry["runs"] += 1
         entry["seconds"] += seconds
         if status == "converged":
+            steps = summary.get("iterations", 0)
             entry["converged"] += 1
-            entry["steps"].append(summary.get("iterations", 0))
+            entry["steps"].append(steps)
             converged_seconds.append(seconds)
-            converged_steps.append(summary.get("iterations", 0))
+            converged_steps.append(steps)
     for entry in by_start.values():
         steps = entry.pop("steps")
         entry["seconds"] = round(entry["seconds"], 1)
