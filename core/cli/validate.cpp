@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -26,6 +27,7 @@
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/core/residual_report.hpp"
 #include "bhnsid/core/interrupt.hpp"
+#include "bhnsid/core/owned_entry.hpp"
 #include "bhnsid/core/run.hpp"
 #include "bhnsid/core/run_directory.hpp"
 #include "commands.hpp"
@@ -58,15 +60,20 @@ std::string read_text(const fs::path& p) {
   return s.str();
 }
 
-// Runs argv with stdout and stderr into `log`; returns the exit status.
+// Runs argv, never through a shell (a directory's name is an argument, whatever it holds), with
+// stdout and stderr into `log` (created afresh: never through a link left there), or the terminal's
+// when `log` is empty; returns the exit status.
 int spawn(const std::vector<std::string>& args, const fs::path& log) {
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
+  const int log_fd = log.empty() ? -1 : create_fresh_file(log);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  if (log_fd >= 0) {
+    posix_spawn_file_actions_adddup2(&actions, log_fd, 1);
+    posix_spawn_file_actions_adddup2(&actions, log_fd, 2);
+  }
   // The level runs in a process group of its own: a terminal's Ctrl-C reaches validate alone, which
   // passes each stopping signal on exactly once (interrupt.cpp), so that the first stops the level
   // at its safe point and only a second ends it at once.
@@ -82,11 +89,12 @@ int spawn(const std::vector<std::string>& args, const fs::path& log) {
   // Held back until the child is known to the handler, then delivered (and passed on) at once.
   sigprocmask(SIG_BLOCK, &stopping, &before);
   pid_t pid = 0;
-  const int rc = interrupt_signal() != 0 ? -1 : posix_spawn(&pid, argv[0], &actions, &attr, argv.data(), environ);
+  const int rc = interrupt_signal() != 0 ? -1 : posix_spawnp(&pid, argv[0], &actions, &attr, argv.data(), environ);
   if (rc == 0) forward_interrupts_to(pid);
   sigprocmask(SIG_SETMASK, &before, nullptr);
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attr);
+  if (log_fd >= 0) ::close(log_fd);
   if (rc < 0)
     throw Interrupted(fmt::format("validate: interrupted by {} before {} started", signal_name(interrupt_signal()), args[1]));
   if (rc != 0) throw RunFailure(fmt::format("validate: cannot start {}: {}", args[0], std::strerror(rc)));
@@ -402,16 +410,19 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
     const fs::path installed = fs::read_symlink("/proc/self/exe", ec).parent_path().parent_path() / "share" / "bhnsid" /
                                "plot_validate.py";
     const std::string script = !ec && fs::exists(installed) ? installed.string() : std::string(BHNSID_PLOT_SCRIPT);
-    const std::string cmd = fmt::format("{} '{}' '{}' '{}'", python, script, (dir / "validate.json").string(), dir.string());
     std::set<std::string> before;
     for (const auto& e : fs::directory_iterator(dir)) before.insert(e.path().filename().string());
-    const int rc = std::system(cmd.c_str());
+    const int rc = spawn({python, script, (dir / "validate.json").string(), dir.string()}, {});
     // What the plot script wrote is ours, so that --force may replace it.
     for (const auto& e : fs::directory_iterator(dir))
       if (!before.count(e.path().filename().string())) directory.record(e.path().filename().string());
+    if (interrupt_signal() != 0)
+      throw Interrupted(fmt::format("validate: interrupted by {} while plotting; the table and validate.json are "
+                                    "complete in {}",
+                                    signal_name(interrupt_signal()), dir.string()));
     if (rc != 0)
-      std::fprintf(stderr, "validate: warning: the plots were not made (%s); the table and validate.json are complete\n",
-                   cmd.c_str());
+      std::fprintf(stderr, "validate: warning: the plots were not made (%s exited with status %d); the table and "
+                   "validate.json are complete\n", script.c_str(), rc);
   }
   return passed ? exit_ok : exit_run_failed;
 }

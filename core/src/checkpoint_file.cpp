@@ -10,6 +10,7 @@
 
 #include "bhnsid/core/atomic_file.hpp"
 #include "bhnsid/core/errors.hpp"
+#include "bhnsid/core/owned_entry.hpp"
 
 namespace bhnsid::core {
 
@@ -90,8 +91,13 @@ std::string CheckpointReader::string(const std::string& name) const {
 }
 
 CheckpointFileWriter::CheckpointFileWriter(fs::path partial) : partial_(std::move(partial)) {
-  file_ = std::fopen(partial_.c_str(), "wb");
-  if (!file_) throw InputError(fmt::format("{}: cannot create the checkpoint: {}", partial_.string(), std::strerror(errno)));
+  const int fd = create_fresh_file(partial_);
+  file_ = ::fdopen(fd, "wb");
+  if (!file_) {
+    const int error = errno;
+    ::close(fd);
+    throw InputError(fmt::format("{}: cannot create the checkpoint: {}", partial_.string(), std::strerror(error)));
+  }
   std::setvbuf(file_, nullptr, _IOFBF, 1 << 20);
   write(magic, sizeof magic);
   write(&checkpoint_format_version, sizeof checkpoint_format_version);
@@ -148,8 +154,7 @@ void CheckpointFileWriter::finish(const fs::path& final_path) {
 }
 
 CheckpointFileReader::CheckpointFileReader(fs::path path) : path_(std::move(path)) {
-  fd_ = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd_ < 0) throw InputError(fmt::format("{}: cannot open the checkpoint: {}", path_.string(), std::strerror(errno)));
+  fd_ = open_own_file_for_reading(path_, "the checkpoint");
   std::FILE* f = ::fdopen(::dup(fd_), "rb");
   if (!f) throw InputError(fmt::format("{}: cannot read the checkpoint: {}", path_.string(), std::strerror(errno)));
   std::setvbuf(f, nullptr, _IOFBF, 1 << 20);
@@ -264,16 +269,28 @@ void CheckpointFileReader::read(const std::string& name, char type, void* out, s
 
 fs::path checkpoint_path(const fs::path& dir, int iteration) { return dir / fmt::format("checkpoint.{:06d}", iteration); }
 
+namespace {
+bool is_checkpoint_name(const std::string& name) {
+  const std::string prefix = "checkpoint.";
+  return name.size() == prefix.size() + 6 && name.compare(0, prefix.size(), prefix) == 0 &&
+         std::all_of(name.begin() + static_cast<std::ptrdiff_t>(prefix.size()), name.end(),
+                     [](char c) { return c >= '0' && c <= '9'; });
+}
+}  // namespace
+
+bool is_checkpoint_entry_name(const std::string& name) {
+  const std::string partial = ".partial";
+  if (name.size() > partial.size() && name.compare(name.size() - partial.size(), partial.size(), partial) == 0)
+    return is_checkpoint_name(name.substr(0, name.size() - partial.size()));
+  return is_checkpoint_name(name);
+}
+
 std::vector<int> checkpoint_iterations(const fs::path& dir) {
   std::vector<int> out;
   std::error_code ec;
   for (auto it = fs::directory_iterator(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    const std::string prefix = "checkpoint.";
-    if (name.size() != prefix.size() + 6 || name.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string digits = name.substr(prefix.size());
-    if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;
-    out.push_back(std::stoi(digits));
+    if (is_checkpoint_name(name)) out.push_back(std::stoi(name.substr(std::strlen("checkpoint."))));
   }
   std::sort(out.rbegin(), out.rend());
   return out;

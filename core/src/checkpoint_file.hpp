@@ -93,5 +93,8 @@ class CheckpointFileReader final : public CheckpointReader {
 /// `dir`, newest first (names alone; the contents are checked when read).
 std::filesystem::path checkpoint_path(const std::filesystem::path& dir, int iteration);
 std::vector<int> checkpoint_iterations(const std::filesystem::path& dir);
+/// A name the program gives an entry of the checkpoint folder: checkpoint.NNNNNN, and its
+/// .partial while being written. --force removes these and nothing else of the folder.
+bool is_checkpoint_entry_name(const std::string& name);
 
 }  // namespace bhnsid::core

@@ -1,10 +1,12 @@
 #include "bhnsid/core/context.hpp"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
 
 #include "bhnsid/core/atomic_file.hpp"
+#include "bhnsid/core/owned_entry.hpp"
 #include "run_state.hpp"
 
 namespace bhnsid::core {
@@ -90,7 +92,11 @@ std::filesystem::path Context::begin_output(const std::string& relative_name) co
     state_->directory->record(name.string());
     state_->directory->record(name.string() + ".partial");
   }
-  return state_->run_dir / (name.string() + ".partial");
+  // Created here, new, so that the plugin's writer (HDF5 opens by path and truncates) never writes
+  // through a symbolic link or into another file's inode left at that name.
+  const std::filesystem::path partial = state_->run_dir / (name.string() + ".partial");
+  ::close(create_fresh_file(partial));
+  return partial;
 }
 
 void Context::commit_output(const std::string& relative_name) const {

@@ -4,11 +4,13 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include "bhnsid/core/atomic_file.hpp"
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/core/log.hpp"
+#include "bhnsid/core/owned_entry.hpp"
 
 namespace bhnsid::core {
 
@@ -16,12 +18,52 @@ LogSink::~LogSink() {
   if (file_) std::fclose(file_);
 }
 
+namespace {
+
+// Appends the earlier run's final log to the fresh partial one (a resume after a finished run).
+void copy_into(int fd, const std::filesystem::path& from) {
+  const int in = open_own_file_for_reading(from, "the log");
+  char buffer[65536];
+  for (;;) {
+    const ssize_t n = ::read(in, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    for (ssize_t done = 0; done < n;) {
+      const ssize_t w = ::write(fd, buffer + done, static_cast<std::size_t>(n - done));
+      if (w < 0 && errno == EINTR) continue;
+      if (w < 0) {
+        const int error = errno;
+        ::close(in);
+        throw InputError(fmt::format("{}: cannot copy the earlier log: {}", from.string(), std::strerror(error)));
+      }
+      done += w;
+    }
+  }
+  ::close(in);
+}
+
+}  // namespace
+
 void LogSink::open_file(const std::filesystem::path& partial, bool append, const std::filesystem::path& final_path) {
-  std::error_code ec;
-  if (append && !std::filesystem::exists(partial, ec) && !final_path.empty() && std::filesystem::exists(final_path, ec))
-    std::filesystem::copy_file(final_path, partial, ec);
-  file_ = std::fopen(partial.c_str(), append ? "a" : "w");
-  if (!file_) throw InputError(fmt::format("{}: cannot create the log: {}", partial.string(), std::strerror(errno)));
+  int fd = -1;
+  if (append && require_own_entry(partial, EntryKind::regular_file)) {
+    fd = ::open(partial.c_str(), O_WRONLY | O_APPEND | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) throw InputError(fmt::format("{}: cannot open the log: {}", partial.string(), std::strerror(errno)));
+  } else {
+    fd = create_fresh_file(partial);
+    try {
+      if (append && !final_path.empty() && require_own_entry(final_path, EntryKind::regular_file)) copy_into(fd, final_path);
+    } catch (...) {
+      ::close(fd);
+      throw;
+    }
+  }
+  file_ = ::fdopen(fd, append ? "a" : "w");
+  if (!file_) {
+    const int error = errno;
+    ::close(fd);
+    throw InputError(fmt::format("{}: cannot create the log: {}", partial.string(), std::strerror(error)));
+  }
   partial_ = partial;
 }
 

@@ -18,6 +18,7 @@
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/core/interrupt.hpp"
+#include "bhnsid/core/owned_entry.hpp"
 #include "bhnsid/core/run_directory.hpp"
 #include "run_checkpoint.hpp"
 #include "run_state.hpp"
@@ -310,7 +311,7 @@ RunResult run(const Configuration& config, const RunOptions& options) {
   const MemoryEstimate memory = check_parameters(config);
   // So is a warm start that reads a run of another build or other parameters.
   WarmPoint warm;
-  if (!options.warm_start.empty()) warm = find_warm_point(options.warm_start, config, build_id(config));
+  if (!options.warm_start.empty()) warm = find_warm_point(options.warm_start, config, build_description(config));
   const std::unique_ptr<RunDirectory> directory_owner =
       options.resume ? std::make_unique<RunDirectory>(options.run_directory, "run", RunDirectory::ReopenTag{})
                      : std::make_unique<RunDirectory>(options.run_directory, options.force, "run", options.protect);
@@ -327,7 +328,7 @@ RunResult run(const Configuration& config, const RunOptions& options) {
   if (run_params.integer("threads") > 0) omp_set_num_threads(static_cast<int>(run_params.integer("threads")));
 #endif
   const int checkpoint_every = static_cast<int>(run_params.integer("checkpoint_every"));
-  const std::string build = options.resume || checkpoint_every > 0 ? build_id(config) : std::string();
+  const std::string build = options.resume || checkpoint_every > 0 ? build_description(config) : std::string();
   // A resume checks its checkpoint against this build and these parameters before it writes
   // anything: a refused one leaves the earlier run exactly as it was (warnings reach the terminal).
   ResumePoint resume;
@@ -338,8 +339,10 @@ RunResult run(const Configuration& config, const RunOptions& options) {
     state.sink.open_file(state.run_dir / "log.txt.partial", options.resume, state.run_dir / "log.txt");
     state.sink.set_verbose(options.verbose);
     directory.record("params.yaml");
-    std::ifstream earlier(state.run_dir / "params.yaml", std::ios::binary);
-    if (options.resume && earlier) {
+    const bool kept = options.resume && require_own_entry(state.run_dir / "params.yaml", EntryKind::regular_file);
+    std::ifstream earlier;
+    if (kept) earlier.open(state.run_dir / "params.yaml", std::ios::binary);
+    if (kept && earlier) {
       // The run's own record of its parameters (the checkpoint proved they match) stays as written.
       std::stringstream text;
       text << earlier.rdbuf();

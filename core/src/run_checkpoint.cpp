@@ -1,13 +1,17 @@
 #include "run_checkpoint.hpp"
 
 #include <dlfcn.h>
+#include <sys/stat.h>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #ifdef _OPENMP
 #include <omp.h>
@@ -15,6 +19,7 @@
 
 #include "bhnsid/core/build_info.hpp"
 #include "bhnsid/core/errors.hpp"
+#include "bhnsid/core/owned_entry.hpp"
 
 namespace bhnsid::core {
 
@@ -36,7 +41,8 @@ std::uint64_t hash_file(std::uint64_t hash, const fs::path& file) {
 // Parameters that only steer how far the loop goes and how often it is saved: a resume may change
 // them (give a run that ran out of iterations more), nothing else.
 bool may_differ(const std::string& key) {
-  return key == "run.max_iterations" || key == "run.checkpoint_every" || key == "run.checkpoint_overhead";
+  // run.threads changes the result only at round-off (the warning below says so, and how to avoid it).
+  return key == "run.max_iterations" || key == "run.threads" || key == "run.checkpoint_every" || key == "run.checkpoint_overhead";
 }
 
 std::map<std::string, std::string> fingerprint_lines(const std::string& text) {
@@ -77,7 +83,29 @@ void check_parameters_match(CheckpointFileReader& f, const Configuration& config
   f.section(core_section);
   const auto was = fingerprint_lines(f.string("parameters"));
   const auto now = fingerprint_lines(parameter_fingerprint(config));
+  // Another plugin set first, by the plugins that differ: its parameters would differ as a consequence.
+  const auto words = [](const std::map<std::string, std::string>& lines) {
+    std::set<std::string> out;
+    const auto it = lines.find("plugins");
+    std::istringstream in(it == lines.end() ? std::string() : it->second);
+    for (std::string w; in >> w;) out.insert(w);
+    return out;
+  };
+  const std::set<std::string> plugins_was = words(was), plugins_now = words(now);
+  if (plugins_was != plugins_now) {
+    std::vector<std::string> added, missing;
+    for (const auto& p : plugins_now)
+      if (!plugins_was.count(p)) added.push_back(p);
+    for (const auto& p : plugins_was)
+      if (!plugins_now.count(p)) missing.push_back(p);
+    throw InputError(fmt::format("{}: plugins: the checkpoint {} was written by another plugin set ({}{}{}); {}",
+                                 config.file.source, f.path().string(),
+                                 added.empty() ? "" : fmt::format("this run adds {}", fmt::join(added, ", ")),
+                                 !added.empty() && !missing.empty() ? ", " : "",
+                                 missing.empty() ? "" : fmt::format("this run lacks {}", fmt::join(missing, ", ")), advice));
+  }
   for (const auto& [key, value] : now) {
+    if (key == "plugins") continue;  // the order of the list is the schedule's business, not the state's
     if (may_change(key)) continue;
     auto it = was.find(key);
     if (it == was.end() || it->second != value)
@@ -152,19 +180,56 @@ std::vector<std::string> refined_keys(const std::map<std::string, std::string>& 
   return refined;
 }
 
+// The parts of the build that differ between a checkpoint and this run ("plugin lapse, core library");
+// empty when the checkpoint does not say (then the ids alone tell).
+std::string build_difference(CheckpointFileReader& f, const std::string& ours) {
+  if (!f.has("build_files")) return {};
+  const auto lines = [](const std::string& text) {
+    std::map<std::string, std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+      const std::size_t tab = line.find('\t');
+      if (tab != std::string::npos) out[line.substr(0, tab)] = line.substr(tab + 1);
+    }
+    return out;
+  };
+  const auto theirs = lines(f.string("build_files")), now = lines(ours);
+  std::vector<std::string> changed;
+  for (const auto& [part, value] : now) {
+    auto it = theirs.find(part);
+    if (it != theirs.end() && it->second != value)
+      changed.push_back(part == "version" ? fmt::format("version ({} -> {})", it->second, value) : part);
+  }
+  return changed.empty() ? std::string() : fmt::format("; changed: {}", fmt::join(changed, ", "));
+}
+
+// Same build as the checkpoint's, or InputError naming what changed.
+void check_build(CheckpointFileReader& f, const std::string& build, const std::string& who, const std::string& advice) {
+  f.section(core_section);
+  const std::string theirs = f.string("build_id"), ours = build_id_of(build);
+  if (theirs != ours)
+    throw InputError(fmt::format("{}{}: written by another build of bhnsid (build id {}, this one {}{}); {}", who,
+                                 f.path().string(), theirs, ours, build_difference(f, build), advice));
+}
+
 }  // namespace
 
-std::string build_id(const Configuration& config) {
-  std::uint64_t hash = fnv_offset;
-  const std::string facts = fmt::format("{}|{}|{}|{}", build_version(), build_git_revision(), build_type(), build_compiler());
-  hash = fnv1a(hash, facts.data(), facts.size());
+std::string build_description(const Configuration& config) {
+  std::string out = fmt::format("version\t{} {} {} {}\n", build_version(), build_git_revision(), build_type(), build_compiler());
+  const auto file_line = [&out](const std::string& role, const fs::path& file) {
+    out += fmt::format("{}\t{:016x}\n", role, hash_file(fnv_offset, file));
+  };
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) hash = hash_file(hash, exe);
+  if (!ec) file_line("executable", exe);
   Dl_info info{};
-  if (::dladdr(reinterpret_cast<void*>(&fnv1a), &info) != 0 && info.dli_fname) hash = hash_file(hash, info.dli_fname);
-  for (const auto& plugin : config.plugins) hash = hash_file(hash, plugin->file);
-  return fmt::format("{:016x}", hash);
+  if (::dladdr(reinterpret_cast<void*>(&fnv1a), &info) != 0 && info.dli_fname) file_line("core library", info.dli_fname);
+  for (const auto& plugin : config.plugins) file_line("plugin " + plugin->decl.name, plugin->file);
+  return out;
+}
+
+std::string build_id_of(const std::string& description) {
+  return fmt::format("{:016x}", fnv1a(fnv_offset, description.data(), description.size()));
 }
 
 std::string parameter_fingerprint(const Configuration& config) {
@@ -180,15 +245,17 @@ void save_checkpoint(RunState& state, const ContextOf& context, bool converged, 
   const fs::path dir = state.run_dir / checkpoint_dir_name;
   state.directory->record_folder(checkpoint_dir_name);
   std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError(fmt::format("{}: cannot create the checkpoint folder: {}", dir.string(), ec.message()));
+  // A symbolic link there would have the rotation below delete another folder's files.
+  if (!require_own_entry(dir, EntryKind::folder) && ::mkdir(dir.c_str(), 0755) != 0 && errno != EEXIST)
+    throw InputError(fmt::format("{}: cannot create the checkpoint folder: {}", dir.string(), std::strerror(errno)));
   const fs::path final_path = checkpoint_path(dir, state.iteration);
   fs::path partial = final_path;
   partial += ".partial";
   {
     CheckpointFileWriter w(partial);
     w.section(core_section);
-    w.put_string("build_id", build);
+    w.put_string("build_id", build_id_of(build));
+    w.put_string("build_files", build);
     w.put_string("parameters", parameter_fingerprint(state.config));
     w.put_integer("iteration", state.iteration);
     w.put_integer("converged", converged ? 1 : 0);
@@ -228,11 +295,13 @@ void save_checkpoint(RunState& state, const ContextOf& context, bool converged, 
 ResumePoint find_resume_point(const fs::path& run_dir, const Configuration& config, const std::string& build,
                               const Log& log) {
   const fs::path dir = run_dir / checkpoint_dir_name;
+  require_own_entry(dir, EntryKind::folder);
   std::error_code ec;
   // A write a kill interrupted: never a checkpoint, and ours to remove.
   for (auto it = fs::directory_iterator(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
     const std::string name = it->path().filename().string();
     if (name.rfind("checkpoint.", 0) == 0 && name.size() > 8 && name.compare(name.size() - 8, 8, ".partial") == 0) {
+      if (!require_own_entry(it->path(), EntryKind::regular_file)) continue;
       log.warn("{}: an unfinished checkpoint write (the run was killed while saving); removed", it->path().string());
       fs::remove(it->path(), ec);
     }
@@ -253,16 +322,13 @@ ResumePoint find_resume_point(const fs::path& run_dir, const Configuration& conf
       continue;
     }
     CheckpointFileReader& f = *point.file;
-    f.section(core_section);
-    const std::string theirs = f.string("build_id");
-    if (theirs != build)
-      throw InputError(fmt::format("{}: written by another build of bhnsid (build id {}, this one {}: the executable, the "
-                                   "core library or a plugin changed); resume with the build that wrote it, or start "
-                                   "again with --force",
-                                   f.path().string(), theirs, build));
+    // The plugin set and the parameters first: another parameter file is named as such, not taken
+    // for another build (the build id covers the plugins loaded).
     check_parameters_match(f, config, may_differ,
-                           "resume with the parameters of the run (only run.max_iterations and the checkpoint settings "
-                           "may change) or start again with --force");
+                           "resume with the parameters of the run (only run.max_iterations, run.threads and the "
+                           "checkpoint settings may change) or start again with --force");
+    check_build(f, build, "", "resume with the build that wrote it, or start again with --force");
+    f.section(core_section);
     const std::int64_t threads = f.integer("threads");
     if (threads != threads_now())
       log.warn("{}: written with {} OpenMP threads, this run has {}: the result will agree to round-off, not to the bit "
@@ -278,6 +344,7 @@ ResumePoint find_resume_point(const fs::path& run_dir, const Configuration& conf
 
 WarmPoint find_warm_point(const fs::path& source_dir, const Configuration& config, const std::string& build) {
   const fs::path dir = source_dir / checkpoint_dir_name;
+  require_own_entry(dir, EntryKind::folder);
   const std::vector<int> iterations = checkpoint_iterations(dir);
   if (iterations.empty())
     throw InputError(fmt::format("--warm-start {}: no checkpoint there (not a run directory, the run stopped before its "
@@ -288,11 +355,6 @@ WarmPoint find_warm_point(const fs::path& source_dir, const Configuration& confi
   point.file = std::make_unique<CheckpointFileReader>(checkpoint_path(dir, iterations.front()));
   CheckpointFileReader& f = *point.file;
   f.section(core_section);
-  const std::string theirs = f.string("build_id");
-  if (theirs != build)
-    throw InputError(fmt::format("--warm-start {}: written by another build of bhnsid (build id {}, this one {}); a warm "
-                                 "start reads the plugins' own state, which only the same build knows",
-                                 f.path().string(), theirs, build));
   const auto was = fingerprint_lines(f.string("parameters"));
   const std::vector<std::string> refined = refined_keys(was, parameter_fingerprint(config), config, f.path().string());
   point.refined = !refined.empty();
@@ -302,6 +364,9 @@ WarmPoint find_warm_point(const fs::path& source_dir, const Configuration& confi
   check_parameters_match(f, config, may_change,
                          "a warm start may change only steerable parameters (bhnsid params marks them [steerable]) and "
                          "refine the lattice by one step");
+  check_build(f, build, "--warm-start ",
+              "a warm start reads the plugins' own state, which only the same build knows");
+  f.section(core_section);
   for (const auto& [key, value] : fingerprint_lines(parameter_fingerprint(config))) {
     auto it = was.find(key);
     if (it != was.end() && it->second != value && !may_differ(key))

@@ -19,8 +19,11 @@ inline constexpr const char* checkpoint_dir_name = "checkpoints";
 /// The core's own section: no plugin can bear the name (names are identifiers).
 inline constexpr const char* core_section = "(core)";
 
-/// A hash of what computes: the executable, the core library and every loaded plugin's file.
-std::string build_id(const Configuration& config);
+/// What computes, a "PART\tVALUE" line each: the version and compiler, and a hash of the executable,
+/// the core library and every loaded plugin's file; a checkpoint keeps it, so that a refusal can
+/// name the part that changed. build_id_of() hashes it to the id the checkpoint is matched by.
+std::string build_description(const Configuration& config);
+std::string build_id_of(const std::string& description);
 
 /// Every resolved parameter as "section.key = value" lines (and the plugin list): what must match
 /// for a checkpoint to continue this run. run.max_iterations and the checkpoint settings may differ.

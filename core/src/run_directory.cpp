@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <ctime>
 #include <fstream>
@@ -17,6 +18,8 @@
 
 #include "bhnsid/core/atomic_file.hpp"
 #include "bhnsid/core/errors.hpp"
+#include "bhnsid/core/owned_entry.hpp"
+#include "checkpoint_file.hpp"
 
 namespace bhnsid::core {
 
@@ -43,12 +46,21 @@ bool listed(const std::vector<std::string>& names, const std::string& name) {
 // Reads the marker; a file of that name in another format is reported, never taken for ours.
 Marker read_marker(const fs::path& dir) {
   Marker m;
-  std::ifstream in(dir / run_marker_name, std::ios::binary);
-  if (!in) return m;
-  std::stringstream text;
-  text << in.rdbuf();
+  const fs::path path = dir / run_marker_name;
+  if (!require_own_entry(path, EntryKind::regular_file)) return m;
+  std::string text;
+  {
+    // A marker lists file names: a megabyte is thousands of runs' worth; more is not ours.
+    constexpr std::size_t max_bytes = 1 << 20;
+    const int fd = open_own_file_for_reading(path, "the run directory's marker");
+    char buffer[65536];
+    ssize_t n = 0;
+    while ((n = ::read(fd, buffer, sizeof buffer)) > 0 && text.size() <= max_bytes) text.append(buffer, static_cast<std::size_t>(n));
+    ::close(fd);
+    if (text.size() > max_bytes) text.clear();
+  }
   try {
-    const json j = json::parse(text.str());
+    const json j = json::parse(text);
     if (j.at("format") != marker_format || j.at("version") != marker_version) throw std::runtime_error("format");
     m.kind = j.at("kind").get<std::string>();
     m.pid = j.at("pid").get<long>();
@@ -99,9 +111,29 @@ struct OldContents {
   }
 };
 
+// A recorded folder (the checkpoints) is the program's only in the entries it names itself: a note
+// the user put there, or a symbolic link where the folder was, is foreign.
+void inspect_folder(const fs::path& dir, const std::string& prefix, OldContents& out) {
+  struct stat st {};
+  if (::lstat(dir.c_str(), &st) != 0) return;
+  if (!S_ISDIR(st.st_mode)) {
+    out.foreign.push_back(prefix + " (not the folder bhnsid made: a symbolic link or a file)");
+    return;
+  }
+  for (const std::string& name : entries_of(dir)) {
+    struct stat entry {};
+    if (!is_checkpoint_entry_name(name) || ::lstat((dir / name).c_str(), &entry) != 0 || !S_ISREG(entry.st_mode))
+      out.foreign.push_back(prefix + "/" + name);
+  }
+}
+
 void inspect(const fs::path& dir, const Marker& marker, const std::string& prefix, OldContents& out) {
   for (const std::string& name : entries_of(dir)) {
-    if (name == run_marker_name || is_our_temporary(name, marker.files) || listed(marker.folders, name)) continue;
+    if (name == run_marker_name || is_our_temporary(name, marker.files)) continue;
+    if (listed(marker.folders, name)) {
+      inspect_folder(dir / name, prefix + name, out);
+      continue;
+    }
     if (!listed(marker.files, name)) {
       out.foreign.push_back(prefix + name);
       continue;
@@ -133,7 +165,14 @@ void remove_old_run(const fs::path& dir, const Marker& marker) {
     if (!listed(marker.files, name) && !listed(marker.folders, name) && !is_our_temporary(name, marker.files))
       continue;  // cannot happen after inspect(); never remove what is not listed
     std::error_code ec;
-    fs::remove_all(dir / name, ec);
+    if (listed(marker.folders, name) && !listed(marker.files, name)) {
+      // inspect() found nothing but our own entries there: those go, then the folder if empty.
+      for (const std::string& entry : entries_of(dir / name))
+        if (is_checkpoint_entry_name(entry)) fs::remove(dir / name / entry, ec);
+      if (!ec) fs::remove(dir / name, ec);
+    } else {
+      fs::remove_all(dir / name, ec);
+    }
     if (ec) throw InputError(fmt::format("{}: cannot remove the old run's {}: {}", dir.string(), name, ec.message()));
   }
 }
@@ -245,6 +284,13 @@ void RunDirectory::lock() {
     throw InputError(fmt::format("{}: cannot open the run directory: {}", dir_.string(), std::strerror(error)));
   }
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    if (errno != EWOULDBLOCK) {
+      // A file system without flock (Lustre mounted without -o flock answers ENOSYS): the run goes
+      // on, but nothing then keeps a second run out of this directory; said once.
+      std::fprintf(stderr, "bhnsid: warning: %s: cannot lock the run directory (%s); two runs into it at once are not "
+                   "excluded on this file system\n", dir_.c_str(), std::strerror(errno));
+      return;
+    }
     ::close(fd_);
     fd_ = -1;
     long pid = 0;

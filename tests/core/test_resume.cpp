@@ -183,10 +183,6 @@ TEST_CASE("core.resume.other_parameters_are_refused_but_more_iterations_are_allo
   CHECK(read_file(out / "summary.json") == summary_before);
   CHECK(read_file(out / "log.txt") == log_before);
 
-  const ProcessResult threads = run(ref.parfile, out, {"--resume", "--set", "run.threads=1"});
-  CHECK(threads.exit_code == 2);
-  CHECK_THAT(threads.err, Contains("run.threads"));
-
   const ProcessResult more = run(ref.parfile, out, {"--resume", "--set", "run.max_iterations=60"});
   INFO(more.err);
   REQUIRE(more.exit_code == 0);

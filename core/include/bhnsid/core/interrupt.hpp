@@ -3,8 +3,10 @@
 // signal sets a flag that the core polls between schedule entries (and long loops, such as the
 // multigrid's cycles, poll between iterations); the run then keeps its last state, writes
 // summary.json with "status": "interrupted" and exits 128 + the signal (130, 143, 129). A second
-// signal exits at once. SIGPIPE is ignored, so output to a closed pipe is a failed write, never
-// the end of a run. Installed by `run` and `validate` only; a signal that was ignored at start
+// signal exits at once, except a copy of the first: the same signal sent by the same process, or by
+// our parent passing it on, within half a second (`timeout` and batch systems deliver one request
+// twice); a terminal's second Ctrl-C always counts. SIGPIPE is ignored, so output to a closed pipe
+// is a failed write, never the end of a run. Installed by `run` and `validate` only; a signal that was ignored at start
 // (nohup) stays ignored.
 namespace bhnsid::core {
 

@@ -32,8 +32,9 @@ class RunDirectory {
   /// Records, before it is written, that the program writes `name` (a file or sub-directory
   /// directly inside), so that a later --force may replace it.
   void record(const std::string& name);
-  /// Records a sub-directory every entry of which the program writes (the checkpoints), so that a
-  /// later --force removes it whole without looking for a marker inside.
+  /// Records the checkpoint folder, so that a later --force removes the entries the program names
+  /// there (checkpoint.NNNNNN) and then the folder; anything else inside, or a symbolic link in
+  /// its place, makes --force refuse, naming it.
   void record_folder(const std::string& name);
   /// Removes what was recorded, the marker and, when this object created them, the directory and
   /// the folders above it (when empty): used when a run fails before anything has run.

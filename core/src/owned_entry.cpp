@@ -1,0 +1,80 @@
+#include "bhnsid/core/owned_entry.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "bhnsid/core/errors.hpp"
+
+namespace bhnsid::core {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* describe_mode(mode_t mode) {
+  if (S_ISLNK(mode)) return "a symbolic link";
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  if (S_ISREG(mode)) return "a regular file";
+  return "an entry of unknown type";
+}
+
+[[noreturn]] void refuse(const fs::path& path, mode_t mode, EntryKind kind) {
+  throw InputError(fmt::format("{}: is {}, where bhnsid writes {} of its own; it never writes through, reads from or "
+                               "deletes inside such an entry: move it away",
+                               path.string(), describe_mode(mode),
+                               kind == EntryKind::folder ? "a folder" : "a regular file"));
+}
+
+}  // namespace
+
+bool require_own_entry(const fs::path& path, EntryKind kind) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) {
+    if (errno == ENOENT) return false;
+    throw InputError(fmt::format("{}: cannot be examined: {}", path.string(), std::strerror(errno)));
+  }
+  const bool fits = kind == EntryKind::folder ? S_ISDIR(st.st_mode) : S_ISREG(st.st_mode);
+  if (!fits) refuse(path, st.st_mode, kind);
+  return true;
+}
+
+int create_fresh_file(const fs::path& path) {
+  if (require_own_entry(path, EntryKind::regular_file) && ::unlink(path.c_str()) != 0 && errno != ENOENT)
+    throw InputError(fmt::format("{}: cannot remove the unfinished file of an earlier run: {}", path.string(),
+                                 std::strerror(errno)));
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd < 0)
+    throw InputError(fmt::format("{}: cannot create the file: {}", path.string(),
+                                 errno == EEXIST ? "another process made an entry of that name meanwhile"
+                                                 : std::strerror(errno)));
+  return fd;
+}
+
+int open_own_file_for_reading(const fs::path& path, const std::string& what) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) {
+    const int error = errno;
+    struct stat st {};
+    if (error == ELOOP && ::lstat(path.c_str(), &st) == 0) refuse(path, st.st_mode, EntryKind::regular_file);
+    throw InputError(fmt::format("{}: cannot open {}: {}", path.string(), what, std::strerror(error)));
+  }
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    const mode_t mode = st.st_mode;
+    ::close(fd);
+    refuse(path, mode, EntryKind::regular_file);
+  }
+  const int flags = ::fcntl(fd, F_GETFL);
+  if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+  return fd;
+}
+
+}  // namespace bhnsid::core
