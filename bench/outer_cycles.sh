@@ -6,7 +6,9 @@
 set -eu
 n=${1:-64}
 bhnsid=${2:-build/bin/bhnsid}
-dx=$(python3 -c "print(3.84 / $n)")
+# N goes into the Python below as an argument, never as code: only a point count is accepted.
+case "$n" in ''|*[!0-9]*) echo "outer_cycles.sh: N = '$n': expected a positive whole number of points" >&2; exit 2 ;; esac
+dx=$(python3 -c 'import sys; print(3.84 / int(sys.argv[1]))' "$n")
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 for variant in "warm_start=false loop_cycles=0" "warm_start=true loop_cycles=0 fmg_restart=1" "warm_start=true loop_cycles=0" "warm_start=true loop_cycles=1" \

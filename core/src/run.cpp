@@ -412,6 +412,8 @@ RunResult run(const Configuration& config, const RunOptions& options) {
   // A run whose restore failed holds the initial guess, not the earlier run's state: no OUTPUT over it.
   const bool reached_loop = ok;
   state.initial_data = ok;
+  // A stop requested during the restore is polled here: a converged checkpoint has no loop to poll it.
+  if (ok && exec.interrupted()) ok = false;
   bool checkpoint_write_failed = false;
   // The time the last checkpoint took and when it ended: a checkpoint waits until its cost is at
   // most run.checkpoint_overhead of the time since (at n = 128 one is 320 MB and 0.5 s, and an
@@ -496,7 +498,8 @@ RunResult run(const Configuration& config, const RunOptions& options) {
   // last state of any run that got as far as the loop, interrupted or not; TERMINATE always runs.
   // None of these three stops for a signal: they are what makes an interrupted run worth keeping.
   if (ok) ok = exec.run_bin(Bin::analysis, false);
-  if (reached_loop || exec.signal() != 0) exec.run_bin(Bin::output, false);
+  // A resume interrupted before its restore holds the initial guess: the earlier run's output stays.
+  if (reached_loop || (exec.signal() != 0 && !options.resume)) exec.run_bin(Bin::output, false);
   exec.run_bin(Bin::terminate, false);
 
   std::string message = exec.failure();

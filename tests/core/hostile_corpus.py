@@ -196,11 +196,12 @@ def signalled(sigs, gap, summary=True):
     return prepare
 
 
-case("signals", "SIGTERM twice within microseconds", {143})(signalled([signal.SIGTERM, signal.SIGTERM], 0))
-case("signals", "SIGINT twice within microseconds", {130})(signalled([signal.SIGINT, signal.SIGINT], 0))
+case("signals", "SIGTERM twice, 0.1 s apart", {143})(signalled([signal.SIGTERM, signal.SIGTERM], 0.1))
+case("signals", "SIGINT twice, 0.1 s apart", {130})(signalled([signal.SIGINT, signal.SIGINT], 0.1))
+case("signals", "SIGTERM twice at once", {143})(signalled([signal.SIGTERM, signal.SIGTERM], 0))
 case("signals", "SIGHUP once", {129})(signalled([signal.SIGHUP], 0))
 # Two different signals are two requests: the second exits at once, without the summary.
-case("signals", "SIGTERM then SIGINT at once", {130})(signalled([signal.SIGTERM, signal.SIGINT], 0, summary=False))
+case("signals", "SIGTERM then SIGINT 0.1 s later", {130})(signalled([signal.SIGTERM, signal.SIGINT], 0.1, summary=False))
 case("signals", "SIGINT, then SIGINT again a second later (a person's second Ctrl-C)", {130})(
     signalled([signal.SIGINT, signal.SIGINT], 1.0, summary=False))
 

@@ -271,3 +271,16 @@ TEST_CASE("core.resume.checkpoints_wait_while_the_last_one_cost_too_much", "[cor
   CHECK(names == std::vector<std::string>{fmt_checkpoint(1), fmt_checkpoint(steps)});
   CHECK_THAT(read_file(out / "log.txt"), Contains("iteration 1: checkpoint written in"));
 }
+
+TEST_CASE("core.resume.a_stop_during_the_restore_is_a_stop", "[core][run][resume]") {
+  // A converged checkpoint goes straight to ANALYSIS, where no signal is polled: a SIGINT that
+  // arrived while the checkpoint was restored used to end as "converged", exit 0.
+  Reference ref;
+  const std::string data_before = read_file(ref.out / "scalars.tsv");
+  KillAt signal_at("sigint_in_restore");
+  const ProcessResult r = run(ref.parfile, ref.out, {"--resume"});
+  INFO(r.err);
+  CHECK(r.exit_code == 130);
+  CHECK(json::parse(read_file(ref.out / "summary.json"))["status"] == "interrupted");
+  CHECK(read_file(ref.out / "scalars.tsv") == data_before);
+}

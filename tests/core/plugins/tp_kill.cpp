@@ -2,7 +2,8 @@
 // (BHNSID_TEST_KILL = "solve:K": at the start of iteration K's SOLVE, checkpoint K-1 on disk;
 // "save:K": inside its own checkpoint section of iteration K, after 4 MiB of it were written, so
 // the checkpoint is left a truncated .partial; "analysis": in ANALYSIS, after the loop's last
-// checkpoint). Without the variable it does nothing, so a run
+// checkpoint; "sigint_in_restore": SIGINT to itself while its checkpoint section is restored, a
+// stop request arriving during a resume's restore). Without the variable it does nothing, so a run
 // with it computes exactly what a run without it does, and its parameters match on --resume.
 #include <csignal>
 #include <cstdlib>
@@ -34,7 +35,11 @@ void declare(PluginBuilder& b) {
         out.put("padding", padding);
         if (asked("save", ctx.iteration())) std::raise(SIGKILL);
       },
-      [](Context&, const CheckpointReader& in) { (void)in.reals("padding"); });
+      [](Context&, const CheckpointReader& in) {
+        (void)in.reals("padding");
+        const char* env = std::getenv("BHNSID_TEST_KILL");
+        if (env && std::string(env) == "sigint_in_restore") std::raise(SIGINT);
+      });
 }
 }  // namespace
 
