@@ -1,35 +1,34 @@
 // bhnsid-export: the reader's fields at a list of points, as a TSV table. Links libbhnsid_reader
-// alone. Exit codes as the solver's: 0 done, 1 the data file could not be read, 2 bad input.
-#include <unistd.h>
-
+// alone. Exit codes as the solver's: 0 done, 1 the data file could not be read, 2 bad input, 3 a bug.
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <iostream>
-#include <sstream>
+#include <memory>
+#include <new>
 #include <string>
 #include <vector>
 
 #include "bhnsid_reader.h"
+#include "export_files.hpp"
 
 namespace {
+
+using bhnsid::exporter::BadInput;
+using bhnsid::exporter::printable;
 
 const char* const usage =
     "usage: bhnsid-export DATA.h5 --points POINTS.txt [--output FILE [--force]] [--fields f1,f2,...]\n"
     "                     [--order N] [--outside error|clamp|extrapolate]\n"
     "Interpolates the Einstein Toolkit fields of DATA.h5 (alp, betax..z, gxx..gzz, kxx..kzz, rho, press,\n"
     "eps, vel[0..2], w_lorentz; default: every field the file has) at the points of POINTS.txt (x y z per\n"
-    "line, physical coordinates; '#' starts a comment) and writes a TSV table: a header line, then x y z\n"
-    "and the fields, %.17g. --order: Lagrange points per axis (2, 4, 6, 8; default 4). --outside: what a\n"
-    "point outside the grid does (default error). --output: written as FILE.partial then renamed, so FILE\n"
-    "is complete or absent; an existing FILE is refused unless --force. Exit 0, 1 if DATA.h5 cannot be\n"
-    "read, 2 on bad input.\n";
-
-struct BadInput {
-  std::string message;
-};
+    "line, physical coordinates; '#' starts a comment; a regular file of at most 256 MiB) and writes a TSV\n"
+    "table: a header line, then x y z and the fields, %.17g. --order: Lagrange points per axis (2, 4, 6, 8;\n"
+    "default 4). --outside: what a point outside the grid does (default error). --output: written under a\n"
+    "private temporary name in FILE's folder, fsynced, then renamed, so FILE is complete or absent; an\n"
+    "existing FILE is refused unless --force, which replaces only a regular file. Exit 0, 1 if DATA.h5\n"
+    "cannot be read, 2 on bad input.\n";
 
 struct Args {
   std::string data, points, output, fields;
@@ -40,31 +39,33 @@ struct Args {
 
 Args parse(int argc, char** argv) {
   Args a;
+  bool seen_points = false, seen_output = false, seen_fields = false, seen_order = false, seen_outside = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    const auto value = [&](const char* flag) -> std::string {
+    const auto value = [&](const char* flag, bool& seen) -> std::string {
+      if (seen) throw BadInput{std::string(flag) + " given twice"};
+      seen = true;
       if (i + 1 >= argc) throw BadInput{std::string(flag) + " needs a value"};
       return argv[++i];
     };
     if (arg == "--points") {
-      a.points = value("--points");
+      a.points = value("--points", seen_points);
+      if (a.points.empty()) throw BadInput{"--points needs a file name"};
     } else if (arg == "--output") {
-      a.output = value("--output");
+      a.output = value("--output", seen_output);
+      if (a.output.empty()) throw BadInput{"--output needs a file name"};
     } else if (arg == "--force") {
       a.force = true;
     } else if (arg == "--fields") {
-      a.fields = value("--fields");
+      a.fields = value("--fields", seen_fields);
       if (a.fields.empty()) throw BadInput{"--fields needs at least one field name"};
     } else if (arg == "--order") {
-      const std::string v = value("--order");
-      char* end = nullptr;
-      errno = 0;
-      const long n = std::strtol(v.c_str(), &end, 10);
-      if (v.empty() || *end != '\0' || errno != 0 || n < 1 || n > 64)
-        throw BadInput{"--order '" + v + "' is not a small positive integer"};
-      a.order = static_cast<int>(n);
+      const std::string v = value("--order", seen_order);
+      if (v != "2" && v != "4" && v != "6" && v != "8")
+        throw BadInput{"--order " + v + ": expected 2, 4, 6 or 8 (Lagrange points per axis)"};
+      a.order = v[0] - '0';
     } else if (arg == "--outside") {
-      const std::string v = value("--outside");
+      const std::string v = value("--outside", seen_outside);
       if (v == "error") a.outside = BHNSID_READER_OUTSIDE_ERROR;
       else if (v == "clamp") a.outside = BHNSID_READER_OUTSIDE_CLAMP;
       else if (v == "extrapolate") a.outside = BHNSID_READER_OUTSIDE_EXTRAPOLATE;
@@ -72,6 +73,7 @@ Args parse(int argc, char** argv) {
     } else if (!arg.empty() && arg[0] == '-') {
       throw BadInput{"unknown option '" + arg + "'"};
     } else if (a.data.empty()) {
+      if (arg.empty()) throw BadInput{"an empty DATA.h5 name"};
       a.data = arg;
     } else {
       throw BadInput{"unexpected argument '" + arg + "' (one DATA.h5 only)"};
@@ -81,33 +83,6 @@ Args parse(int argc, char** argv) {
   if (a.points.empty()) throw BadInput{"--points POINTS.txt is required"};
   if (a.force && a.output.empty()) throw BadInput{"--force needs --output FILE"};
   return a;
-}
-
-void read_points(const std::string& path, std::vector<double>& x, std::vector<double>& y, std::vector<double>& z) {
-  std::ifstream in(path);
-  if (!in) throw BadInput{"cannot read the points file " + path};
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    const std::size_t hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
-    std::istringstream s(line);
-    std::vector<double> v;
-    std::string word;
-    while (s >> word) {
-      char* end = nullptr;
-      const double d = std::strtod(word.c_str(), &end);
-      if (*end != '\0') throw BadInput{path + ":" + std::to_string(number) + ": '" + word + "' is not a number"};
-      v.push_back(d);
-    }
-    if (v.empty()) continue;
-    if (v.size() != 3)
-      throw BadInput{path + ":" + std::to_string(number) + ": expected three numbers x y z, found " +
-                     std::to_string(v.size())};
-    x.push_back(v[0]);
-    y.push_back(v[1]);
-    z.push_back(v[2]);
-  }
-  if (in.bad()) throw BadInput{"error while reading " + path};
 }
 
 std::vector<std::string> split(const std::string& list) {
@@ -148,54 +123,22 @@ void write_table(std::FILE* f, const std::vector<std::string>& names, const std:
   }
 }
 
-/// FILE.partial, flushed to disk, then moved to FILE: a reader of FILE never sees half a table, and
-/// a failure leaves FILE as it was. Without --force, link() makes the final step fail if FILE
-/// appeared meanwhile (rename would replace it), so a file this run did not write is never lost.
-void write_file(const Args& a, const std::vector<std::string>& names, const std::vector<double>& x,
-                const std::vector<double>& y, const std::vector<double>& z, const std::vector<std::vector<double>>& values) {
-  if (!a.force && access(a.output.c_str(), F_OK) == 0)
-    throw BadInput{a.output + " exists; pass --force to replace it"};
-  const std::string partial = a.output + ".partial";
-  std::FILE* f = std::fopen(partial.c_str(), "w");
-  if (!f) throw BadInput{"cannot write " + partial + ": " + std::strerror(errno)};
-  write_table(f, names, x, y, z, values);
-  bool ok = std::fflush(f) == 0 && !std::ferror(f) && fsync(fileno(f)) == 0;
-  const int saved = errno;
-  ok = std::fclose(f) == 0 && ok;
-  if (!ok) {
-    std::remove(partial.c_str());
-    throw BadInput{"cannot write " + partial + ": " + std::strerror(saved)};
-  }
-  if (a.force) {
-    if (std::rename(partial.c_str(), a.output.c_str()) != 0) {
-      const int e = errno;
-      std::remove(partial.c_str());
-      throw BadInput{"cannot rename " + partial + " to " + a.output + ": " + std::strerror(e)};
-    }
-    return;
-  }
-  if (link(partial.c_str(), a.output.c_str()) != 0) {
-    const int e = errno;
-    std::remove(partial.c_str());
-    throw BadInput{e == EEXIST ? a.output + " exists; pass --force to replace it"
-                               : "cannot create " + a.output + ": " + std::strerror(e)};
-  }
-  std::remove(partial.c_str());
-}
-
 int run(const Args& a) {
-  std::vector<double> x, y, z;
-  read_points(a.points, x, y, z);
+  // Every refusal of the output comes before the work, so a long interpolation is not lost to it.
+  if (!a.output.empty()) bhnsid::exporter::check_output(a.output, a.force, {a.data, a.points});
+  const bhnsid::exporter::Points points = bhnsid::exporter::read_points(a.points);
+  const std::vector<double>&x = points.x, &y = points.y, &z = points.z;
+  std::vector<std::string> names;
+  if (!a.fields.empty()) names = split(a.fields);
   bhnsid_reader* reader = nullptr;
   int status = bhnsid_reader_open(a.data.c_str(), &reader);
   if (status != BHNSID_READER_OK) {
-    std::cerr << "bhnsid-export: " << bhnsid_reader_last_error() << "\n";
+    std::cerr << "bhnsid-export: " << printable(bhnsid_reader_last_error()) << "\n";
     return 1;
   }
-  std::vector<std::string> names;
-  if (!a.fields.empty()) {
-    names = split(a.fields);
-  } else {
+  // Closed however run() ends: a bad request or an allocation failure throws past it.
+  const std::unique_ptr<bhnsid_reader, void (*)(bhnsid_reader*)> owner(reader, bhnsid_reader_close);
+  if (names.empty()) {
     std::size_t n = 0;
     bhnsid_reader_num_fields(reader, &n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -216,19 +159,17 @@ int run(const Args& a) {
   status = bhnsid_reader_interpolate(reader, &options, x.size(), x.data(), y.data(), z.data(), names.size(), cnames.data(),
                                      out.data());
   if (status != BHNSID_READER_OK) {
-    std::cerr << "bhnsid-export: " << a.data << " at the points of " << a.points << ": " << bhnsid_reader_last_error()
+    std::cerr << "bhnsid-export: " << printable(a.data + " at the points of " + a.points + ": " + bhnsid_reader_last_error())
               << "\n";
-    bhnsid_reader_close(reader);
     return exit_code(status);
   }
-  bhnsid_reader_close(reader);
 
   if (a.output.empty()) {
     write_table(stdout, names, x, y, z, values);
     if (std::fflush(stdout) != 0 || std::ferror(stdout)) throw BadInput{"cannot write the table to stdout"};
     return 0;
   }
-  write_file(a, names, x, y, z, values);
+  bhnsid::exporter::write_output(a.output, a.force, [&](std::FILE* f) { write_table(f, names, x, y, z, values); });
   return 0;
 }
 
@@ -243,10 +184,13 @@ int main(int argc, char** argv) {
   try {
     return run(parse(argc, argv));
   } catch (const BadInput& e) {
-    std::cerr << "bhnsid-export: " << e.message << "\n" << (argc <= 1 ? usage : "");
+    std::cerr << "bhnsid-export: " << printable(e.message) << "\n" << (argc <= 1 ? usage : "");
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "bhnsid-export: out of memory for the table: ask for fewer points or fields\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "bhnsid-export: " << e.what() << "\n";
-    return 1;
+    std::cerr << "bhnsid-export: internal error: " << printable(e.what()) << "\n";
+    return 3;
   }
 }

@@ -152,7 +152,8 @@ int main(int argc, char** argv) {
   try {
     // An empty name would silently become the default directory.
     if ((run->parsed() && run->count("--output") && output.empty()) ||
-        (validate->parsed() && validate->count("--output") && vopt.output.empty()))
+        (validate->parsed() && validate->count("--output") && vopt.output.empty()) ||
+        (plot->parsed() && plot->count("--output") && plot_output.empty()))
       throw core::InputError("--output: expected a directory name, got an empty string");
     // A run's results are its files: a signal stops it at a safe point and a closed terminal pipe
     // must not fail it. Every other command's result is what it prints: the signals keep their

@@ -8,8 +8,11 @@ only). Same rules, same answers (to round-off) as the C library; reader/README.m
         print(v["alp"], r.scalars["adm_mass"])
 """
 
+import functools
 import math
+import operator
 import os
+import stat
 import threading
 
 import h5py
@@ -40,7 +43,7 @@ class ReaderError(Exception):
 
 def _text(v):
     if isinstance(v, bytes):
-        return v.decode("utf-8")
+        return v.decode("utf-8", "replace")
     if isinstance(v, np.ndarray) and v.shape == () and v.dtype.kind in "SO":
         return _text(v[()])
     if not isinstance(v, str):
@@ -53,6 +56,58 @@ def _numbers(v):
     if a.dtype.kind not in "iuf":
         raise ReaderError(ERR_FORMAT, "expected a numeric attribute, found %r" % (v,))
     return a.astype(np.float64).ravel()
+
+
+def _contract(what, other=ERR_FORMAT):
+    """Whatever h5py, numpy or the file throws inside becomes the ReaderError the contract promises
+    (reader/README.md): MemoryError is ERR_INTERNAL, an I/O failure of HDF5 ERR_IO, anything else
+    `other` (ERR_FORMAT where the file's contents are read), with the file named."""
+    def wrap(fn):
+        @functools.wraps(fn)
+        def guarded(self, *args, **kwargs):
+            try:
+                return fn(self, *args, **kwargs)
+            except ReaderError:
+                raise
+            except MemoryError:
+                raise ReaderError(ERR_INTERNAL, "out of memory while %s %s" % (what, self.path)) from None
+            except OSError as e:
+                raise ReaderError(ERR_IO, "HDF5 could not read %s (damaged file?): %s" % (self.path, e)) from None
+            except Exception as e:  # noqa: BLE001 - the contract: ReaderError and nothing else
+                if other == ERR_FORMAT:
+                    raise ReaderError(other, "%s: malformed (%s while %s it: %s)" % (
+                        self.path, type(e).__name__, what, e)) from None
+                raise ReaderError(other, "internal error while %s %s: %s: %s" % (
+                    what, self.path, type(e).__name__, e)) from None
+        return guarded
+    return wrap
+
+
+def _regular_file(path):
+    """ERR_IO unless path is a regular file: opened non-blocking and checked with fstat before h5py
+    sees it, so that a FIFO is refused at once instead of waited on."""
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+    except FileNotFoundError:
+        raise ReaderError(ERR_IO, "no such file: " + path) from None
+    except OSError as e:
+        raise ReaderError(ERR_IO, "cannot read %s: %s" % (path, e.strerror)) from None
+    try:
+        mode = os.fstat(fd).st_mode
+    finally:
+        os.close(fd)
+    if stat.S_ISDIR(mode):
+        raise ReaderError(ERR_IO, path + " is a directory, not a data.h5")
+    if not stat.S_ISREG(mode):
+        kind = "a FIFO" if stat.S_ISFIFO(mode) else "a socket" if stat.S_ISSOCK(mode) else "a device"
+        raise ReaderError(ERR_IO, "%s is %s, not a regular file" % (path, kind))
+
+
+def _memory_bytes():
+    try:
+        return os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (ValueError, OSError, AttributeError):
+        return 0
 
 
 def _in_region(held, tol, dx, dy, dz):
@@ -68,8 +123,11 @@ def _harmonic_fill(r, held, parity, values, path):
     the same conjugate-gradient iteration."""
     _, c, h = held
     tol = 1e-9 * r.dx
-    lo = lambda cc, o: int(math.floor((cc - h - o) / r.dx)) - 1  # noqa: E731
-    hi = lambda cc, o: int(math.ceil((cc + h - o) / r.dx)) + 1  # noqa: E731
+    # Clamped while still floats, as the C library: a half-size of 1e300 means the whole grid.
+    bound = 1.0 + max(r.nx, r.ny, r.nz)
+    clamp = lambda t: min(max(t, -bound), bound)  # noqa: E731
+    lo = lambda cc, o: int(clamp(math.floor(clamp((cc - h - o) / r.dx)) - 1))  # noqa: E731
+    hi = lambda cc, o: int(clamp(math.ceil(clamp((cc + h - o) / r.dx)) + 1))  # noqa: E731
     i0, i1 = max(0, lo(c[0], r.origin[0])), min(r.nx - 1, hi(c[0], r.origin[0]))
     j0, j1 = max(0, lo(c[1], r.origin[1])), min(r.ny - 1, hi(c[1], r.origin[1]))
     czl, czh = (min(c[2], -c[2]), max(c[2], -c[2])) if r.equatorial else (c[2], c[2])
@@ -103,7 +161,9 @@ def _harmonic_fill(r, held, parity, values, path):
         sign = np.where(qk[data] < 0, float(parity), 1.0)
         b[data] += sign * values[np.abs(qk[data]), qj[data], qi[data]]
     if known == 0:
-        raise ReaderError(ERR_FORMAT, path + ": the held region covers the whole grid; nothing to fill it from")
+        raise ReaderError(ERR_FORMAT, "%s: the held region (a %s of half-size %.17g about (%.17g, %.17g, %.17g)) "
+                          "covers the whole grid; nothing to fill it from" % (
+                              path, "cube" if held[0] else "sphere", h, c[0], c[1], c[2]))
     xs, res, p = np.zeros(n), b.copy(), b.copy()
     bnorm = math.sqrt(float(np.dot(b, b)))
     rr = float(np.dot(res, res))
@@ -138,24 +198,29 @@ class Reader:
     several threads."""
 
     def __init__(self, path):
-        self.path = os.fspath(path)
-        if not os.path.exists(self.path):
-            raise ReaderError(ERR_IO, "no such file: " + self.path)
-        if os.path.isdir(self.path):
-            raise ReaderError(ERR_IO, self.path + " is a directory, not a data.h5")
-        if not os.access(self.path, os.R_OK):
-            raise ReaderError(ERR_IO, "cannot read " + self.path)
-        if not h5py.is_hdf5(self.path):
+        self._file = None
+        try:
+            self.path = os.fsdecode(path)
+        except TypeError:
+            raise ReaderError(ERR_ARGUMENT, "the path %r is not a file name" % (path,)) from None
+        if not self.path or "\0" in self.path:
+            raise ReaderError(ERR_ARGUMENT, "the path %r is not a file name" % (self.path,))
+        _regular_file(self.path)
+        try:
+            is_hdf5 = h5py.is_hdf5(self.path)
+        except (OSError, ValueError):
+            is_hdf5 = False
+        if not is_hdf5:
             raise ReaderError(ERR_IO, self.path + " is not an HDF5 file")
         try:
             self._file = h5py.File(self.path, "r")
-        except OSError as e:
-            raise ReaderError(ERR_IO, "HDF5 could not open %s (damaged or locked?): %s" % (self.path, e))
+        except Exception as e:  # noqa: BLE001 - h5py raises OSError, and others on odd files
+            raise ReaderError(ERR_IO, "HDF5 could not open %s (damaged or locked?): %s" % (self.path, e)) from None
         self._lock = threading.Lock()
         self._fields = {}
         try:
             self._open()
-        except Exception:
+        except BaseException:
             self._file.close()
             raise
 
@@ -164,6 +229,7 @@ class Reader:
     def _fail(self, what):
         return ReaderError(ERR_FORMAT, self.path + ": " + what)
 
+    @_contract("opening")
     def _open(self):
         f = self._file
         if "format" not in f.attrs:
@@ -189,7 +255,10 @@ class Reader:
         self.scalars = {}
         if isinstance(f.get("scalars"), h5py.Group):
             for name in sorted(f["scalars"].attrs):
-                a = np.asarray(f["scalars"].attrs[name])
+                try:
+                    a = np.asarray(f["scalars"].attrs[name])
+                except (OSError, TypeError, ValueError):
+                    continue  # a type h5py cannot read is not a number: skipped, as the C library does
                 if a.dtype.kind in "iuf" and a.size == 1:
                     self.scalars[name] = float(a.ravel()[0])
         self._read_eos()
@@ -256,7 +325,8 @@ class Reader:
         self.eos = (lo, k, gamma, a)
 
     def close(self):
-        self._file.close()
+        if self._file is not None:
+            self._file.close()
 
     def __enter__(self):
         return self
@@ -266,17 +336,23 @@ class Reader:
 
     # -- metadata ------------------------------------------------------------------------------
 
+    @_contract("reading an attribute of")
     def string_attribute(self, obj, name):
         """A string attribute, e.g. ("/", "status"), ("/eos", "description")."""
         with self._lock:
+            if not isinstance(obj, str) or not isinstance(name, str):
+                raise ReaderError(ERR_ARGUMENT, "the object and attribute names must be strings")
             node = self._file.get(obj)
             if node is None or name not in node.attrs:
                 raise ReaderError(ERR_NOT_FOUND, "no attribute %s@%s in the file" % (obj, name))
             return _text(node.attrs[name])
 
+    @_contract("reading an attribute of")
     def numeric_attribute(self, obj, name):
         """A numeric attribute as a 1-D float64 array."""
         with self._lock:
+            if not isinstance(obj, str) or not isinstance(name, str):
+                raise ReaderError(ERR_ARGUMENT, "the object and attribute names must be strings")
             node = self._file.get(obj)
             if node is None or name not in node.attrs:
                 raise ReaderError(ERR_NOT_FOUND, "no attribute %s@%s in the file" % (obj, name))
@@ -299,11 +375,14 @@ class Reader:
 
     def field(self, path):
         """The dataset at path in memory ([k][j][i], filled in its held region), loaded once."""
+        if not isinstance(path, str):
+            raise ReaderError(ERR_ARGUMENT, "a dataset path must be a string, not %r" % (path,))
         with self._lock:
             if path not in self._fields:
                 self._fields[path] = self._load(path)
             return self._fields[path]
 
+    @_contract("loading a dataset of")
     def _load(self, path):
         if path not in self._dataset_set:
             raise ReaderError(ERR_NOT_FOUND, "no dataset %s in %s" % (path, self.path))
@@ -314,6 +393,12 @@ class Reader:
             raise self._fail("%s has shape %d x %d x %d, not /grid@shape_zyx" % ((path,) + d.shape))
         if d.dtype.kind not in "iuf":
             raise self._fail(path + " does not hold numbers")
+        # The shape comes from the file: a damaged or hostile one may claim more than any memory.
+        size = 8.0 * self.nz * self.ny * self.nx
+        memory = _memory_bytes()
+        if memory and size > memory:
+            raise ReaderError(ERR_INTERNAL, "out of memory: %s holds %d x %d x %d doubles (%.3g GiB), more than this "
+                              "machine can hold" % (path, self.nz, self.ny, self.nx, size / 2 ** 30))
         values = np.ascontiguousarray(d[...], dtype=np.float64)
         parity = 1
         if "parity_z" in d.attrs:
@@ -354,9 +439,11 @@ class Reader:
     # -- interpolation -------------------------------------------------------------------------
 
     def _stencils(self, x, y, z, order, outside):
-        """Per axis: start indices (npts,), weights (npts, order); and the effective points."""
+        """Per axis: start indices (npts,), weights (npts, order); the effective points; and which
+        points are extrapolated to."""
         first, last = [0, 0, self.kmin], [self.nx - 1, self.ny - 1, self.nz - 1]
         coords, starts, weights, points = (x, y, z), [], [], []
+        extrapolated = np.zeros(x.shape, dtype=bool)
         for a in range(3):
             c = coords[a]
             bad = np.flatnonzero(~np.isfinite(c))
@@ -370,12 +457,15 @@ class Reader:
                 raise ReaderError(ERR_OUTSIDE, "%s is outside the grid: %s must lie in [%.17g, %.17g]" % (
                     self._point(p, x, y, z), "xyz"[a], self.lower[a], self.upper[a]))
             point = c.copy()
+            if outside == 2:
+                extrapolated |= out
             move = ~out if outside != 1 else np.ones_like(out)
             clamped = np.where(move, np.clip(t, first[a], last[a]), t)
             changed = clamped != t
             point[changed] = self.origin[a] + self.dx * clamped[changed]
             t = clamped
-            start = np.floor(t).astype(np.int64) - (order // 2 - 1)
+            # Clamped as floats first: an extrapolated t of 1e300 must not overflow the conversion.
+            start = np.clip(np.floor(t), first[a] - order, last[a] + order).astype(np.int64) - (order // 2 - 1)
             start = np.clip(start, first[a], last[a] - order + 1)
             u = t - start
             w = np.empty((t.size, order))
@@ -389,7 +479,7 @@ class Reader:
             starts.append(start)
             weights.append(w)
             points.append(point)
-        return starts, weights, points
+        return starts, weights, points, extrapolated
 
     @staticmethod
     def _point(p, x, y, z):
@@ -473,6 +563,7 @@ class Reader:
                 self.field(path)
         return plan, puncture, hydro
 
+    @_contract("interpolating", ERR_INTERNAL)
     def interpolate(self, x, y, z, fields=None, order=4, outside="error"):
         """The fields (default: self.fields) at the physical points (x, y, z): a dict name -> array.
         order: Lagrange points per axis (2, 4, 6, 8); outside: "error", "clamp" or "extrapolate"."""
@@ -480,20 +571,39 @@ class Reader:
             fields = self.fields
         if isinstance(fields, str):
             fields = [fields]
+        try:
+            fields = list(fields)
+        except TypeError:
+            raise ReaderError(ERR_ARGUMENT, "fields must be a list of names, not %r" % (fields,)) from None
+        for name in fields:
+            if not isinstance(name, str):
+                raise ReaderError(ERR_ARGUMENT, "a field name must be a string, not %r" % (name,))
+        try:
+            order = operator.index(order)
+        except TypeError:
+            order = repr(order)
         if order not in (2, 4, 6, 8):
             raise ReaderError(ERR_ARGUMENT, "interpolation order %r is not supported (2, 4, 6 or 8 points per "
                               "axis)" % (order,))
-        if outside not in _OUTSIDE:
+        if not isinstance(outside, str) or outside not in _OUTSIDE:
             raise ReaderError(ERR_ARGUMENT, "unknown out-of-grid policy %r" % (outside,))
         for axis, count in zip("xyz", (self.nx, self.ny, self.nz - self.kmin)):
             if count < order:
                 raise ReaderError(ERR_ARGUMENT, "the grid has %d points along %s, fewer than interpolation order "
                                   "%d needs" % (count, axis, order))
-        x, y, z = (np.atleast_1d(np.asarray(v, dtype=np.float64)).ravel() for v in (x, y, z))
+        try:
+            x, y, z = (np.atleast_1d(np.asarray(v, dtype=np.float64)).ravel() for v in (x, y, z))
+        except (TypeError, ValueError) as e:
+            raise ReaderError(ERR_ARGUMENT, "x, y and z must be numbers: %s" % e) from None
         if not x.size == y.size == z.size:
             raise ReaderError(ERR_ARGUMENT, "x, y and z differ in length")
-        plan, puncture, hydro = self._plan(list(fields))
-        starts, weights, points = self._stencils(x, y, z, order, _OUTSIDE[outside])
+        plan, puncture, hydro = self._plan(fields)
+        # Far extrapolation overflows on purpose, and is reported below: numpy must not print.
+        with np.errstate(all="ignore"):
+            return self._evaluate(x, y, z, fields, plan, puncture, hydro, order, outside)
+
+    def _evaluate(self, x, y, z, fields, plan, puncture, hydro, order, outside):
+        starts, weights, points, extrapolated = self._stencils(x, y, z, order, _OUTSIDE[outside])
         ip = lambda path: self._interp(self.field(path), starts, weights)  # noqa: E731
         cache = {}
 
@@ -503,14 +613,23 @@ class Reader:
                     m, pos = self.puncture
                     d = [points[a] - pos[a] for a in range(3)]
                     r = np.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
-                    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
-                        phi = m / (2 * r) + ip("/variables/chi")
-                        g = phi ** 4
-                    bad = np.flatnonzero((r == 0) | ~np.isfinite(g) | ~(phi > 0))
+                    phi = m / (2 * r) + ip("/variables/chi")
+                    g = phi ** 4
+                    at = (r == 0) | ((phi > 0) & ~np.isfinite(g) & ~extrapolated)
+                    bad = np.flatnonzero(at | ~np.isfinite(g) | ~(phi > 0))
                     if bad.size:
-                        raise ReaderError(ERR_PUNCTURE, "point %d (%.17g, %.17g, %.17g) is at the puncture, where "
-                                          "the metric is infinite" % (bad[0], points[0][bad[0]], points[1][bad[0]],
-                                                                      points[2][bad[0]]))
+                        p = bad[0]
+                        where = "point %d (%.17g, %.17g, %.17g)" % (p, points[0][p], points[1][p], points[2][p])
+                        if at[p]:
+                            raise ReaderError(ERR_PUNCTURE, where + " is at the puncture, where the metric is infinite")
+                        # Far outside the box the edge polynomial of chi runs away: the point is too
+                        # far to extrapolate to, which is not the puncture's doing.
+                        what = "%s: the conformal factor phi = M/(2r) + chi = %.17g is not a positive number" % (
+                            where, phi[p])
+                        if extrapolated[p]:
+                            raise ReaderError(ERR_OUTSIDE, what + " there: the point lies too far outside the grid for "
+                                              "chi to be extrapolated (clamp it, or keep it near the grid)")
+                        raise ReaderError(ERR_VALUE, what + " (/variables/chi is too negative there)")
                     zero = np.zeros_like(g)
                     cache["phi"], cache["g"] = phi, [g, zero, zero, g, zero, g]
                 else:
@@ -556,8 +675,13 @@ class Reader:
                         raise ReaderError(ERR_VALUE, "point %d (%.17g, %.17g, %.17g): the interpolated velocity has "
                                           "gamma_ij v^i v^j = %g >= 1, no Lorentz factor" % (
                                               p, points[0][p], points[1][p], points[2][p], v2[p]))
-                    with np.errstate(invalid="ignore", divide="ignore"):
-                        v = np.where(inside, 1 / np.sqrt(1 - v2), 1.0)
+                    v = np.where(inside, 1 / np.sqrt(1 - v2), 1.0)
+            bad = np.flatnonzero(extrapolated & ~np.isfinite(v))
+            if bad.size:
+                p = bad[0]
+                raise ReaderError(ERR_OUTSIDE, "point %d (%.17g, %.17g, %.17g): %s is not finite there: the point lies "
+                                  "too far outside the grid to extrapolate to (clamp it, or keep it near the grid)" % (
+                                      p, points[0][p], points[1][p], points[2][p], name))
             out[name] = v
         return out
 

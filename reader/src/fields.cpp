@@ -80,7 +80,7 @@ Request::Request(const DataFile& file, const std::vector<std::string>& names, bo
   };
   bool metric_used = false, fluid_used = false;
   for (const std::string& name : names) {
-    Item it{Kind::raw};
+    Item it{Kind::raw, 0, nullptr, name};
     if (!name.empty() && name[0] == '/') {
       it.data = need(name, "the request '" + name + "'");
     } else if (name == "alp") {
@@ -155,8 +155,19 @@ void Request::metric(const Stencil& s, std::size_t index, Point& p) const {
     const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
     p.phi = bh_mass_ / (2 * r) + interpolate(file_.grid(), *chi_, s);
     const double g = std::pow(p.phi, 4);
-    if (r == 0 || !std::isfinite(g) || !(p.phi > 0))
+    if (r == 0 || (p.phi > 0 && !std::isfinite(g) && !s.extrapolated))
       throw Error(BHNSID_READER_ERR_PUNCTURE, point_text(index, s) + " is at the puncture, where the metric is infinite");
+    if (!std::isfinite(g) || !(p.phi > 0)) {
+      // Far outside the box the edge polynomial of chi runs away: the point is too far to
+      // extrapolate to, which is not the puncture's doing.
+      std::ostringstream m;
+      m.precision(17);
+      m << point_text(index, s) << ": the conformal factor phi = M/(2r) + chi = " << p.phi << " is not a positive number";
+      if (s.extrapolated)
+        throw Error(BHNSID_READER_ERR_OUTSIDE, m.str() + " there: the point lies too far outside the grid for " +
+                                                   "chi to be extrapolated (clamp it, or keep it near the grid)");
+      throw Error(BHNSID_READER_ERR_VALUE, m.str() + " (/variables/chi is too negative there)");
+    }
     p.g = {g, 0, 0, g, 0, g};
   } else {
     for (std::size_t c = 0; c < 6; ++c) p.g[c] = interpolate(file_.grid(), *metric_[c], s);
@@ -230,6 +241,11 @@ void Request::evaluate(const Stencil& s, std::size_t index, double* out) const {
         break;
       }
     }
+    // A polynomial evaluated far outside the box overflows: say so rather than return inf or nan.
+    if (s.extrapolated && !std::isfinite(v))
+      throw Error(BHNSID_READER_ERR_OUTSIDE, point_text(index, s) + ": " + it.name +
+                                                 " is not finite there: the point lies too far outside the grid to "
+                                                 "extrapolate to (clamp it, or keep it near the grid)");
     out[f] = v;
   }
 }

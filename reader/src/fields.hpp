@@ -25,7 +25,8 @@ class Request {
   /// not be called).
   Request(const DataFile& file, const std::vector<std::string>& names, bool check_only = false);
   /// out[f] = field f at the stencil's point (number `index`, for messages). Throws ERR_PUNCTURE
-  /// at the puncture and ERR_VALUE for |v| >= 1.
+  /// at the puncture, ERR_VALUE for |v| >= 1 or phi <= 0, ERR_OUTSIDE where an extrapolated value
+  /// is not finite (the point too far outside the grid).
   void evaluate(const Stencil& s, std::size_t index, double* out) const;
 
  private:
@@ -34,6 +35,7 @@ class Request {
     Kind kind;
     int component = 0;          // shift/vel: 0..2; metric/curvature: xx xy xz yy yz zz = 0..5
     const Field* data = nullptr;  // what is interpolated; null: zero
+    std::string name;             // as asked, for messages
   };
   struct Point;
   void metric(const Stencil& s, std::size_t index, Point& p) const;

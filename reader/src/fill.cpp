@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "bhnsid_reader.h"
 
@@ -30,10 +31,14 @@ bool in_held_region(const HeldRegion& r, const Grid& g, double x, double y, doub
 
 std::size_t harmonic_fill(const Grid& g, const HeldRegion& r, int parity, std::vector<double>& values,
                           const std::string& path) {
-  // The index box that can hold the region (and its mirror), one point wider on each side.
+  // The index box that can hold the region (and its mirror), one point wider on each side. Clamped
+  // to the grid while still a double: a half-size or centre of 1e300 must mean "the whole grid"
+  // (and be refused below as 1e6 is), not overflow the conversion to int.
   const double h = r.half_size;
-  const auto lo = [&](double c, double o) { return static_cast<int>(std::floor((c - h - o) / g.dx)) - 1; };
-  const auto hi = [&](double c, double o) { return static_cast<int>(std::ceil((c + h - o) / g.dx)) + 1; };
+  const double bound = 1.0 + std::max({g.nx, g.ny, g.nz});
+  const auto index = [&](double t) { return static_cast<int>(std::clamp(t, -bound, bound)); };
+  const auto lo = [&](double c, double o) { return index(std::floor((c - h - o) / g.dx) - 1); };
+  const auto hi = [&](double c, double o) { return index(std::ceil((c + h - o) / g.dx) + 1); };
   const int i0 = std::max(0, lo(r.centre[0], g.origin[0])), i1 = std::min(g.nx - 1, hi(r.centre[0], g.origin[0]));
   const int j0 = std::max(0, lo(r.centre[1], g.origin[1])), j1 = std::min(g.ny - 1, hi(r.centre[1], g.origin[1]));
   const double cz_lo = g.equatorial ? std::min(r.centre[2], -r.centre[2]) : r.centre[2];
@@ -86,8 +91,13 @@ std::size_t harmonic_fill(const Grid& g, const HeldRegion& r, int parity, std::v
       }
     }
   }
-  if (known == 0)
-    throw Error(BHNSID_READER_ERR_FORMAT, path + ": the held region covers the whole grid; nothing to fill it from");
+  if (known == 0) {
+    char what[160];
+    std::snprintf(what, sizeof what, " (a %s of half-size %.17g about (%.17g, %.17g, %.17g))", r.cube ? "cube" : "sphere",
+                  r.half_size, r.centre[0], r.centre[1], r.centre[2]);
+    throw Error(BHNSID_READER_ERR_FORMAT,
+                path + ": the held region" + what + " covers the whole grid; nothing to fill it from");
+  }
 
   // Conjugate gradients from zero to a relative residual of 1e-15 (round-off: the Python module
   // runs the same iteration and agrees to ~1e-14).

@@ -1,7 +1,13 @@
 #include "h5.hpp"
 
-#include <filesystem>
-#include <fstream>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <new>
 #include <utility>
 
 #include "bhnsid_reader.h"
@@ -66,10 +72,23 @@ H5Id::~H5Id() {
 }
 
 H5Id open_file(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error(BHNSID_READER_ERR_IO, "no such file: " + path);
-  if (std::filesystem::is_directory(path, ec)) throw Error(BHNSID_READER_ERR_IO, path + " is a directory, not a data.h5");
-  if (!std::ifstream(path, std::ios::binary).good()) throw Error(BHNSID_READER_ERR_IO, "cannot read " + path);
+  // Opened non-blocking and checked with fstat before HDF5 sees the path: a FIFO would otherwise
+  // hold the caller until something writes to it, and a device would be read without end.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    const int e = errno;
+    if (e == ENOENT) throw Error(BHNSID_READER_ERR_IO, "no such file: " + path);
+    throw Error(BHNSID_READER_ERR_IO, "cannot read " + path + ": " + std::strerror(e));
+  }
+  struct stat st {};
+  const bool stat_ok = ::fstat(fd, &st) == 0;
+  ::close(fd);
+  if (!stat_ok) throw Error(BHNSID_READER_ERR_IO, "cannot examine " + path);
+  if (S_ISDIR(st.st_mode)) throw Error(BHNSID_READER_ERR_IO, path + " is a directory, not a data.h5");
+  if (!S_ISREG(st.st_mode)) {
+    const char* kind = S_ISFIFO(st.st_mode) ? "a FIFO" : S_ISSOCK(st.st_mode) ? "a socket" : "a device";
+    throw Error(BHNSID_READER_ERR_IO, path + " is " + kind + ", not a regular file");
+  }
   const htri_t is_h5 = H5Fis_hdf5(path.c_str());
   if (is_h5 <= 0) throw Error(BHNSID_READER_ERR_IO, path + " is not an HDF5 file");
   const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -181,7 +200,23 @@ std::vector<double> read_dataset(hid_t file, const std::string& path, const std:
       throw Error(BHNSID_READER_ERR_FORMAT, path + " has shape " + std::to_string(dims[0]) + " x " +
                                                 std::to_string(dims[1]) + " x " + std::to_string(dims[2]) +
                                                 ", not /grid@shape_zyx");
-  std::vector<double> out(dims[0] * dims[1] * dims[2]);
+  // dims come from the file: a damaged or hostile one may claim more points than any memory holds.
+  const double bytes = 8.0 * double(dims[0]) * double(dims[1]) * double(dims[2]);
+  const double physical = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+  const auto out_of_memory = [&] {
+    char size[64];
+    std::snprintf(size, sizeof size, "%.3g GiB", bytes / 1073741824.0);
+    return Error(BHNSID_READER_ERR_INTERNAL, "out of memory: " + path + " holds " + std::to_string(dims[0]) + " x " +
+                                                 std::to_string(dims[1]) + " x " + std::to_string(dims[2]) +
+                                                 " doubles (" + size + "), more than this machine can hold");
+  };
+  if (physical > 0 && bytes > physical) throw out_of_memory();
+  std::vector<double> out;
+  try {
+    out.resize(dims[0] * dims[1] * dims[2]);
+  } catch (const std::bad_alloc&) {
+    throw out_of_memory();
+  }
   if (H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
     throw Error(BHNSID_READER_ERR_IO, "HDF5 could not read " + path + " (damaged file?)");
   return out;

@@ -58,12 +58,15 @@ Stencil stencil_at(const Grid& g, const Options& o, double x, double y, double z
       throw Error(BHNSID_READER_ERR_OUTSIDE, m.str());
     }
     s.point[static_cast<std::size_t>(a)] = coord[a];
+    if (outside && o.out_of_grid == BHNSID_READER_OUTSIDE_EXTRAPOLATE) s.extrapolated = true;
     if (!outside || o.out_of_grid == BHNSID_READER_OUTSIDE_CLAMP) {
       const double clamped = std::clamp(t, double(first[a]), double(last[a]));
       if (clamped != t) s.point[static_cast<std::size_t>(a)] = g.origin[static_cast<std::size_t>(a)] + g.dx * clamped;
       t = clamped;
     }
-    int start = static_cast<int>(std::floor(t)) - (o.order / 2 - 1);
+    // Clamped as a double first: an extrapolated t of 1e300 must not overflow the conversion.
+    const double cell = std::clamp(std::floor(t), double(first[a] - o.order), double(last[a] + o.order));
+    int start = static_cast<int>(cell) - (o.order / 2 - 1);
     start = std::clamp(start, first[a], last[a] - o.order + 1);
     s.start[static_cast<std::size_t>(a)] = start;
     const double u = t - start;  // the point in the stencil's own coordinate, nodes at 0 .. order-1

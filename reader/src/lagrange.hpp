@@ -26,6 +26,8 @@ struct Stencil {
   std::array<std::array<double, max_order>, 3> w{};
   /// The physical point the stencil is for: the one asked, or where the clamp policy moved it.
   std::array<double, 3> point{};
+  /// The point lies outside the box and the extrapolate policy evaluates the edge polynomial there.
+  bool extrapolated = false;
 };
 
 /// The stencil at physical point (x, y, z) under the out-of-grid policy; throws ERR_OUTSIDE naming

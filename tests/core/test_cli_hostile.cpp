@@ -302,6 +302,8 @@ TEST_CASE("core.hostile.clear_messages", "[core][hostile]") {
   const auto parfile = dir.write("case.yaml", counter_parfile());
   expect_input_error(bhnsid_with_test_plugins({"run", parfile.string(), "--output", ""}, dir.path()), "empty");
   CHECK_FALSE(fs::exists(dir.path() / "runs"));
+  // bhnsid plot --output '' used to take the default folder silently.
+  expect_input_error(bhnsid_with_test_plugins({"plot", dir.path().string(), "--output", ""}, dir.path()), "empty");
 }
 
 TEST_CASE("core.hostile.many_keys_check_quickly", "[core][hostile]") {
