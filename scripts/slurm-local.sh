@@ -31,11 +31,15 @@ for cmd in munged slurmctld slurmd sinfo scontrol; do
     die "$cmd not found: run scripts/install-deps.sh --slurm first"
 done
 export PATH="$PATH:/usr/sbin"
+# The node name goes into slurm.conf, which slurmctld parses line by line: only a host name's own
+# characters may reach it.
+[[ "$node" =~ ^[A-Za-z0-9._-]+$ ]] || die "host name '$node' holds characters a slurm.conf NodeName cannot carry"
 
 running() {  # running NAME PIDFILE: the pid file names a live process of that name
   local pid
   [ -s "$2" ] || return 1
   pid=$(cat "$2")
+  [[ "$pid" =~ ^[1-9][0-9]*$ ]] || return 1  # a damaged pid file never reaches kill (kill -1 is everyone)
   [ -r "/proc/$pid/comm" ] && [ "$(cat "/proc/$pid/comm")" = "$1" ]
 }
 

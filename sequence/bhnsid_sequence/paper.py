@@ -3,6 +3,8 @@ the paper's open question: do the minima of E_b and of J coincide? Written as pa
 when mass_ratio is one of the paper's (1, 3, 10)."""
 import math
 
+from .spec import key
+
 # Miller 2001, Table I (E_b, J/M0^2, Omega M0, rho_max) and Table II (xhat_A, C_B, sigma, P^y_BH), at
 # the E_b minimum of the n = 256 grid, error bars of eq. errorbar: {mu: {M0/(M0)_max: {quantity: (value, error)}}}.
 PAPER = {
@@ -83,10 +85,10 @@ def comparison(mass_ratio, targets, isco, grid_name):
            "", "distance: |ours − paper| / sqrt(e_paper² + e_ours²); > 1 disagrees beyond the combined error bars.", ""]
     for t in targets:
         paper = rows.get(round(float(t), 4))
-        ours = isco.get(f"{t:g}", {}).get("E_b", {})
+        ours = isco.get(key(t), {}).get("E_b", {})
         if paper is None:
             continue
-        out += [f"## M0/(M0)_max = {t:g}", "", "| quantity | paper | ours | distance |", "|---|---|---|---|"]
+        out += [f"## M0/(M0)_max = {key(t)}", "", "| quantity | paper | ours | distance |", "|---|---|---|---|"]
         offset = M_NS_OVER_M0.get((float(mass_ratio), round(float(t), 4)))
         for q in ORDER:
             pv, pe = paper[q]
@@ -110,13 +112,13 @@ def comparison(mass_ratio, targets, isco, grid_name):
     out += ["## Do the minima of E_b and of J coincide? (the paper's open question)", "",
             "| M0/(M0)_max | Omega M0 at min E_b | Omega M0 at min J | difference / combined error |", "|---|---|---|---|"]
     for t in targets:
-        cells = isco.get(f"{t:g}", {})
+        cells = isco.get(key(t), {})
         e, j = cells.get("E_b", {}).get("Omega_M0"), cells.get("J", {}).get("Omega_M0")
         if not e or not j or "value" not in e or "value" not in j:
             why = "; ".join(c.get("reason", "") for c in (cells.get("E_b", {}), cells.get("J", {})) if "reason" in c)
-            out.append(f"| {t:g} | — | — | ({why[:200]}) |")
+            out.append(f"| {key(t)} | — | — | ({why[:200]}) |")
             continue
         comb = math.sqrt((e.get("error") or 0.0) ** 2 + (j.get("error") or 0.0) ** 2)
         ratio = f"{abs(e['value'] - j['value']) / comb:.2f}" if comb > 0 else "—"
-        out.append(f"| {t:g} | {_fmt(e['value'], e.get('error'))} | {_fmt(j['value'], j.get('error'))} | {ratio} |")
+        out.append(f"| {key(t)} | {_fmt(e['value'], e.get('error'))} | {_fmt(j['value'], j.get('error'))} | {ratio} |")
     return "\n".join(out) + "\n"

@@ -6,7 +6,7 @@ from typing import Dict, List
 
 from .reduce import error_model, parabola_minimum, quadratic_at, spline_at
 from .runs import Outcome
-from .spec import Spec
+from .spec import Spec, key
 
 # Tabulated quantities: summary.json's scalar names (physical units; E_b with the bare mass, as
 # the paper; E_b' with the puncture mass, physics-notes §6.1).
@@ -33,29 +33,34 @@ def at_targets(spec: Spec, outcomes: List[Outcome]) -> Dict:
     m0_max = None
     for o in outcomes:
         s = o.scalars or {}
-        if o.status == "converged" and _finite(s.get("rest_mass")) and _finite(s.get("rest_mass_fraction")):
+        if (o.status == "converged" and _finite(s.get("rest_mass")) and _finite(s.get("rest_mass_fraction"))
+                and s["rest_mass_fraction"] != 0):
             m0_max = s["rest_mass"] / s["rest_mass_fraction"]
             break
+    usable = {}  # (grid, x_a) -> its converged runs with every quantity, in one pass over the outcomes
+    needed = list(QUANTITIES.values()) + ["rest_mass"]
+    for o in outcomes:
+        if o.status == "converged" and all(_finite((o.scalars or {}).get(k)) for k in needed):
+            usable.setdefault((o.config.grid_index, o.config.x_a), []).append(o)
     out = {}
     for g, grid in enumerate(spec.grids):
         per_grid = out.setdefault(grid.name, {})
         for xa in spec.x_a:
-            runs = [o for o in outcomes if o.config.grid_index == g and o.config.x_a == xa and o.status == "converged"
-                    and all(_finite((o.scalars or {}).get(k)) for k in list(QUANTITIES.values()) + ["rest_mass"])]
+            runs = usable.get((g, xa), [])
             m0 = [o.scalars["rest_mass"] for o in runs]
-            cell = per_grid.setdefault(f"{xa:.6g}", {})
+            cell = per_grid.setdefault(key(xa), {})
             for t in spec.targets:
                 if m0_max is None:
-                    cell[f"{t:g}"] = {"reason": "no converged configuration gives (M0)_max"}
+                    cell[key(t)] = {"reason": "no converged configuration gives (M0)_max"}
                     continue
                 entry = {}
-                for name, key in QUANTITIES.items():
-                    r = spline_at(m0, [o.scalars[key] for o in runs], [t * m0_max])[0]
+                for name, scalar in QUANTITIES.items():
+                    r = spline_at(m0, [o.scalars[scalar] for o in runs], [t * m0_max])[0]
                     if r.value is None:
                         entry = {"reason": r.reason}
                         break
                     entry[name] = r.value
-                cell[f"{t:g}"] = entry
+                cell[key(t)] = entry
     return {"m0_max": m0_max, "grids": out}
 
 
@@ -64,10 +69,10 @@ def minima(spec: Spec, table: Dict) -> Dict:
     out = {}
     for grid in spec.grids:
         for t in spec.targets:
-            points = [table["grids"][grid.name][f"{xa:.6g}"][f"{t:g}"] for xa in spec.x_a]
+            points = [table["grids"][grid.name][key(xa)][key(t)] for xa in spec.x_a]
             points = [p for p in points if "reason" not in p]
             points.sort(key=lambda p: p["Omega_M0"])
-            res = out.setdefault(grid.name, {}).setdefault(f"{t:g}", {})
+            res = out.setdefault(grid.name, {}).setdefault(key(t), {})
             res["points"] = len(points)
             x = [p["Omega_M0"] for p in points]
             for label, quantity in MINIMA.items():
@@ -88,13 +93,13 @@ def error_bars(spec: Spec, found: Dict) -> Dict:
     finest = spec.grids[0].name
     for t in spec.targets:
         for label in MINIMA:
-            cells = [found[g.name][f"{t:g}"][label] for g in spec.grids]
-            res = out.setdefault(f"{t:g}", {}).setdefault(label, {})
+            cells = [found[g.name][key(t)][label] for g in spec.grids]
+            res = out.setdefault(key(t), {}).setdefault(label, {})
             if any("reason" in c for c in cells):
                 reasons = [f"{g.name}: {c['reason']}" for g, c in zip(spec.grids, cells) if "reason" in c]
                 res["reason"] = "; ".join(reasons)
-                if "reason" not in found[finest][f"{t:g}"][label]:
-                    res["values"] = found[finest][f"{t:g}"][label]
+                if "reason" not in found[finest][key(t)][label]:
+                    res["values"] = found[finest][key(t)][label]
                 continue
             for name in QUANTITIES:
                 q = [c[name] for c in cells]
@@ -115,12 +120,12 @@ def point_errors(spec: Spec, table: Dict) -> Dict:
         return out
     for xa in spec.x_a:
         for t in spec.targets:
-            cells = [table["grids"][g.name][f"{xa:.6g}"][f"{t:g}"] for g in spec.grids]
+            cells = [table["grids"][g.name][key(xa)][key(t)] for g in spec.grids]
             if any("reason" in c for c in cells):
                 continue
             errs = {}
             for name in ("E_b", "J_over_M0sq", "Omega_M0"):
                 e = error_model([g.dx for g in spec.grids], [g.rc for g in spec.grids], [c[name] for c in cells])
                 errs[name] = e.error_bar
-            out.setdefault(f"{t:g}", {})[f"{xa:.6g}"] = errs
+            out.setdefault(key(t), {})[key(xa)] = errs
     return out

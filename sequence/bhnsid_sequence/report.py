@@ -1,26 +1,18 @@
 """sequence.json, the tables in the layout of the paper's Tables I and II (Markdown and CSV), and
 the figures E_b(Omega M0) and J/M0^2(Omega M0) per target mass, minima marked. Every file is
-written under a temporary name and renamed."""
+written under a fresh private name, fsynced and renamed (safe_io.write_atomic)."""
 import csv
 import io
 import json
-import os
 from pathlib import Path
 
 from .paper import comparison
 from .pipeline import MINIMA
+from .safe_io import write_atomic, write_with
+from .spec import key
 
 TABLE_I = ["E_b", "J_over_M0sq", "Omega_M0", "rho_max"]
 TABLE_II = ["x_a", "C_B", "sigma", "P_y_BH"]
-
-
-def write_atomic(path: Path, text: str):
-    tmp = path.with_name(path.name + ".partial")
-    with open(tmp, "w") as f:
-        f.write(text)
-        f.flush()
-        os.fsync(f.fileno())
-    os.replace(tmp, path)
 
 
 def _cell(entry, name):
@@ -42,19 +34,19 @@ def tables(spec, errors, minimum="E_b"):
     w = csv.writer(buf)
     w.writerow(header + [h + "_error" for h in TABLE_I + TABLE_II] + ["note"])
     for t in spec.targets:
-        e = errors[f"{t:g}"][minimum]
+        e = errors[key(t)][minimum]
         note = e.get("reason", "")
         if note and "values" not in e:
-            md.append(f"| {spec.mass_ratio:g} | {t:g} | " + " | ".join(["—"] * (len(header) - 2)) + f" |  ({note})")
+            md.append(f"| {spec.mass_ratio:g} | {key(t)} | " + " | ".join(["—"] * (len(header) - 2)) + f" |  ({note})")
             w.writerow([spec.mass_ratio, t] + [""] * 2 * len(TABLE_I + TABLE_II) + [note])
             continue
         if "values" in e:  # the finest grid has a minimum, another has none: no error bar
-            md.append(f"| {spec.mass_ratio:g} | {t:g} | " + " | ".join(f"{e['values'][q]:.6g}" for q in TABLE_I + TABLE_II)
+            md.append(f"| {spec.mass_ratio:g} | {key(t)} | " + " | ".join(f"{e['values'][q]:.6g}" for q in TABLE_I + TABLE_II)
                       + f" |  (no error bar: {note})")
             w.writerow([spec.mass_ratio, t] + [e["values"][q] for q in TABLE_I + TABLE_II] + [""] * len(TABLE_I + TABLE_II)
                        + [note])
             continue
-        md.append(f"| {spec.mass_ratio:g} | {t:g} | " + " | ".join(_cell(e, q) for q in TABLE_I + TABLE_II) + " |")
+        md.append(f"| {spec.mass_ratio:g} | {key(t)} | " + " | ".join(_cell(e, q) for q in TABLE_I + TABLE_II) + " |")
         w.writerow([spec.mass_ratio, t] + [e[q]["value"] for q in TABLE_I + TABLE_II]
                    + [e[q]["error"] if e[q]["error"] is not None else "" for q in TABLE_I + TABLE_II] + [""])
     return "\n".join(md) + "\n", buf.getvalue()
@@ -73,29 +65,31 @@ def figures(spec, table, found, errors_at_points, out_dir: Path):
         for t in spec.targets:
             pts = []
             for xa in spec.x_a:
-                p = table["grids"][finest][f"{xa:.6g}"][f"{t:g}"]
+                p = table["grids"][finest][key(xa)][key(t)]
                 if "reason" in p:
                     continue
-                err = errors_at_points.get(f"{t:g}", {}).get(f"{xa:.6g}", {})
+                err = errors_at_points.get(key(t), {}).get(key(xa), {})
                 pts.append((p["Omega_M0"], p[quantity], err.get(quantity, 0.0), err.get("Omega_M0", 0.0)))
             pts.sort()
             if not pts:
                 continue
             xs, ys, dy, dxs = zip(*pts)
-            line = ax.errorbar(xs, ys, yerr=dy, xerr=dxs, marker="o", ms=3, capsize=2, label=f"$M_0 = {t:g}\\,(M_0)_{{max}}$")
-            m = found[finest][f"{t:g}"][minimum]
+            line = ax.errorbar(xs, ys, yerr=dy, xerr=dxs, marker="o", ms=3, capsize=2,
+                               label=f"$M_0 = {key(t)}\\,(M_0)_{{max}}$")
+            m = found[finest][key(t)][minimum]
             if "reason" not in m:
                 ax.plot([m["Omega_M0"]], [m["E_b" if quantity == "E_b" else "J_over_M0sq"]], "*", ms=12,
                         color=line[0].get_color())
         ax.set_xlabel(r"$\Omega M_0$")
         ax.set_ylabel(label)
         ax.set_title(f"$\\mu_{{bn}} = {spec.mass_ratio:g}$, {finest} (minima: stars)")
-        ax.legend(fontsize=8)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=8)
         fig.tight_layout()
-        tmp = out_dir / (fname + ".partial.png")
-        fig.savefig(tmp, dpi=120)
-        plt.close(fig)
-        os.replace(tmp, out_dir / fname)
+        try:
+            write_with(out_dir / fname, lambda f: fig.savefig(f, format="png", dpi=120))
+        finally:
+            plt.close(fig)
         written.append(fname)
     return written
 

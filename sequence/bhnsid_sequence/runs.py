@@ -1,18 +1,22 @@
-"""The configurations of a sequence as ordinary run directories, run on a local pool of worker
-processes; a configuration already converged with the same command is skipped, so a killed
+"""The configurations of a sequence as ordinary run directories, and one run of them with its
+starts (coarse twin, lower neighbour, bridges, cold), as the local pool (pool.py) and a SLURM array
+task run it; a configuration already converged with the same command is skipped, so a killed
 sequence resumes where it stopped."""
+import bisect
 import json
 import os
 import shlex
-import subprocess
-import sys
-import time
-from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Dict, List, Optional
 
-from .spec import Grid, Spec
+from .checkpoints import drop_checkpoints, has_checkpoint, keep_newest_checkpoint
+from .safe_io import create_log, expect, make_folders, read_tail, read_text_or_none
+from .signals import STOP
+from .spec import Grid, Spec, key
+
+# summary.json and timers.tsv of a run are a few kB; a larger one is not a run's.
+MAX_RECORD_BYTES = 4 << 20
 
 
 @dataclass(frozen=True)
@@ -24,7 +28,7 @@ class Config:
 
     @property
     def relative_dir(self) -> Path:
-        return Path(f"grid{self.grid_index}_{self.grid.name}") / f"xa{self.x_a:.6g}" / f"rho{self.rho_max:.6g}"
+        return Path(f"grid{self.grid_index}_{self.grid.name}") / f"xa{key(self.x_a)}" / f"rho{key(self.rho_max)}"
 
 
 def configurations(spec: Spec) -> List[Config]:
@@ -57,9 +61,14 @@ def warm_source(spec: Spec, c: Config) -> Optional[Config]:
     """The run c starts from when it has converged: the next lower rho_max of its chain (same grid,
     same xhat_A, so the same lattice and star position; the lowest rho_max, furthest from the
     fold, starts cold). A scheduler runs c after it."""
-    line = chain(spec, c)
-    i = line.index(c)
-    return line[i - 1] if i > 0 else None
+    i = rank(spec, c.rho_max)
+    return Config(c.grid_index, c.grid, c.x_a, spec.rho_max[i - 1]) if i > 0 else None
+
+
+def rank(spec: Spec, rho_max: float) -> int:
+    """The index of RHO_MAX in the sequence's sorted list (a bisection: a sequence's lists are long
+    enough that a linear search per configuration adds up)."""
+    return bisect.bisect_left(spec.rho_max, rho_max)
 
 
 def coarse_twin(spec: Spec, c: Config) -> Optional[Config]:
@@ -85,7 +94,7 @@ def twin_run_dir(spec: Spec, c: Config, root: Path) -> Optional[Path]:
     if twin is None:
         return None
     run_dir = root / twin.relative_dir
-    return run_dir if read_outcome(twin, run_dir).status == "converged" and _has_checkpoint(run_dir) else None
+    return run_dir if read_outcome(twin, run_dir).status == "converged" and has_checkpoint(run_dir) else None
 
 
 def still_read(spec: Spec, root: Path, d: Config) -> bool:
@@ -94,7 +103,7 @@ def still_read(spec: Spec, root: Path, d: Config) -> bool:
     run again only when the sequence resumes, from what is there then (tidy_checkpoints)."""
     d_dir = root / d.relative_dir
     line = chain(spec, d)
-    for x in line[line.index(d) + 1:] + fine_twins(spec, d):
+    for x in line[rank(spec, d.rho_max) + 1:] + fine_twins(spec, d):
         if read_outcome(x, root / x.relative_dir).status != "missing":
             continue
         if x.grid_index != d.grid_index or warm_run_dir(spec, x, root) == d_dir:
@@ -105,9 +114,9 @@ def still_read(spec: Spec, root: Path, d: Config) -> bool:
 def warm_run_dir(spec: Spec, c: Config, root: Path) -> Optional[Path]:
     """The nearest lower converged run of c's chain, if any (an unconverged neighbour is passed over)."""
     line = chain(spec, c)
-    for d in reversed(line[:line.index(c)]):
+    for d in reversed(line[:rank(spec, c.rho_max)]):
         run_dir = root / d.relative_dir
-        if read_outcome(d, run_dir).status == "converged" and _has_checkpoint(run_dir):
+        if read_outcome(d, run_dir).status == "converged" and has_checkpoint(run_dir):
             return run_dir
     return None
 
@@ -121,20 +130,30 @@ class Outcome:
     seconds: float = 0.0
 
 
+def read_summary(run_dir: Path) -> Optional[dict]:
+    """summary.json of a run, None when absent or not a run's summary (a run cut short)."""
+    text = read_text_or_none(run_dir / "summary.json", MAX_RECORD_BYTES)
+    try:
+        summary = json.loads(text) if text is not None else None
+    except (ValueError, RecursionError):
+        return None
+    return summary if isinstance(summary, dict) else None
+
+
 def read_outcome(c: Config, run_dir: Path) -> Outcome:
-    try:
-        summary = json.loads((run_dir / "summary.json").read_text())
-    except (OSError, ValueError):
+    summary = read_summary(run_dir)
+    if summary is None:
         return Outcome(c, "missing")
-    timers = run_dir / "timers.tsv"
     seconds = 0.0
-    try:
-        for line in timers.read_text().splitlines():
-            if line.startswith("TOTAL\t"):
+    for line in (read_text_or_none(run_dir / "timers.tsv", MAX_RECORD_BYTES) or "").splitlines():
+        if line.startswith("TOTAL\t"):
+            try:
                 seconds = float(line.split("\t")[3])
-    except (OSError, ValueError, IndexError):
-        pass
-    return Outcome(c, summary.get("status", "missing"), summary.get("message", ""), summary.get("scalars"), seconds)
+            except (ValueError, IndexError):
+                pass
+    status, message, scalars = summary.get("status"), summary.get("message"), summary.get("scalars")
+    return Outcome(c, status if isinstance(status, str) else "missing", message if isinstance(message, str) else "",
+                   scalars if isinstance(scalars, dict) else None, seconds)
 
 
 def up_to_date(spec: Spec, c: Config, run_dir: Path) -> bool:
@@ -158,7 +177,7 @@ def failed_alike(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = Tr
     try:
         # Its attempts ran to the end: a sequence killed during a bridge or before the cold start
         # leaves the failure of an earlier attempt, which says nothing about the later ones.
-        if Path(str(run_dir) + ".out").read_text().splitlines()[-1:] != [EVERY_START_TRIED]:
+        if ((read_tail(log_path(run_dir), 4096) or "").splitlines() or [""])[-1] != EVERY_START_TRIED:
             return False
         failed_at = (run_dir / "summary.json").stat().st_mtime_ns
         if os.stat(bhnsid).st_mtime_ns >= failed_at:
@@ -172,54 +191,11 @@ def failed_alike(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = Tr
 def same_settings(spec: Spec, c: Config, run_dir: Path) -> bool:
     """The run in run_dir was made with c's settings (its own record of its command)."""
     try:
-        line = json.loads((run_dir / "summary.json").read_text())["provenance"]["command_line"]
-    except (OSError, ValueError, KeyError):
+        words = shlex.split(read_summary(run_dir)["provenance"]["command_line"])
+    except (TypeError, KeyError, ValueError, AttributeError):
         return False
-    words = shlex.split(line)
     wanted = [f"{k}={v}" for k, v in settings(spec, c).items()]
     return all(w in words for w in wanted) and str(spec.base) in words
-
-
-class Progress:
-    """One terminal line: done / running / failed / total and the time left. The time left: each
-    run still to come at the mean cost of the runs of its grid finished in this call (a grid with
-    none yet at the others' cost per point times its n^3 points), in wall time at the parallelism
-    seen so far. A run at n = 256 costs ~5x one at 128, so a count of runs alone misleads."""
-
-    def __init__(self, todo: List[Config], skipped: int, stream=sys.stderr, kept_failed: int = 0):
-        self.total = len(todo) + skipped + kept_failed
-        self.done, self.failed, self.running = skipped, kept_failed, 0
-        self.skipped = skipped  # converged before this call: no measure of the time a run takes
-        self.left = {}  # grid -> runs still to finish
-        for c in todo:
-            self.left[c.grid] = self.left.get(c.grid, 0) + 1
-        self.seconds = {}  # grid -> the timed runs finished here (seconds of each)
-        self.start = time.monotonic()
-        self.stream = stream
-
-    def finished(self, o: "Outcome"):
-        if o.status == "converged":
-            self.done += 1
-        else:
-            self.failed += 1
-        self.left[o.config.grid] -= 1
-        if o.seconds > 0:  # a run that failed before its timers were written says nothing
-            self.seconds.setdefault(o.config.grid, []).append(o.seconds)
-
-    def seconds_left(self, elapsed: float) -> Optional[float]:
-        work_done = sum(sum(s) for s in self.seconds.values())
-        if work_done <= 0 or not any(self.left.values()):
-            return None
-        per_point = work_done / sum(len(s) * g.n ** 3 for g, s in self.seconds.items())
-        work_left = sum(n * (sum(self.seconds[g]) / len(self.seconds[g]) if g in self.seconds else per_point * g.n ** 3)
-                        for g, n in self.left.items())
-        return work_left * elapsed / work_done
-
-    def show(self, note: str = ""):
-        seconds = self.seconds_left(time.monotonic() - self.start)
-        left = f", about {seconds / 60:.1f} min left" if seconds is not None else ""
-        print(f"sequence: {self.done} done, {self.running} running, {self.failed} failed of {self.total}{left}"
-              f"{' - ' + note if note else ''}", file=self.stream, flush=True)
 
 
 # How many times a failed warm-start step in rho_max is halved (runs at the midpoints, "bridges")
@@ -228,11 +204,16 @@ class Progress:
 BRIDGE_HALVINGS = 2
 
 
+def log_path(run_dir: Path) -> Path:
+    """rhoR.out beside the run directory rhoR: every attempt's output and the sequence's notes."""
+    return run_dir.with_name(run_dir.name + ".out")
+
+
 def _run(bhnsid: str, spec: Spec, c: Config, run_dir: Path, source: Optional[Path], log) -> int:
     # A directory of an earlier attempt (failed, killed, other settings) is replaced; --force
-    # only ever removes what bhnsid wrote there.
-    cmd = command(bhnsid, spec, c, run_dir, source) + (["--force"] if run_dir.exists() else [])
-    return subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, env=dict(os.environ)).returncode
+    # only ever removes what bhnsid wrote there. Once a stop is requested nothing starts (128 + N).
+    cmd = command(bhnsid, spec, c, run_dir, source) + (["--force"] if expect(run_dir, "folder") else [])
+    return STOP.run(cmd, log)
 
 
 def _bridge(bhnsid: str, spec: Spec, root: Path, c: Config, source: Config, log, halvings: int) -> int:
@@ -252,8 +233,8 @@ def _bridge(bhnsid: str, spec: Spec, root: Path, c: Config, source: Config, log,
         return 1
     print(f"bhnsid sequence: the step from rho_max = {source.rho_max:g} failed; bridging through "
           f"rho_max = {mid.rho_max:g} ({mid_dir})", file=log, flush=True)
-    if not (up_to_date(spec, mid, mid_dir) and _has_checkpoint(mid_dir)):
-        with open(str(mid_dir) + ".out", "w") as mid_log:
+    if not (up_to_date(spec, mid, mid_dir) and has_checkpoint(mid_dir)):
+        with create_log(log_path(mid_dir)) as mid_log:
             rc = _run(bhnsid, spec, mid, mid_dir, root / source.relative_dir, mid_log)
             if rc == 1:
                 rc = _bridge(bhnsid, spec, root, mid, source, mid_log, halvings - 1)
@@ -273,10 +254,10 @@ def run_one(bhnsid: str, spec: Spec, root: Path, c: Config, warm: bool = True) -
     warm-started from its converged coarse twin, else from its nearest converged lower-rho_max
     neighbour, when there is one."""
     run_dir = root / c.relative_dir
-    run_dir.parent.mkdir(parents=True, exist_ok=True)
+    make_folders(root, c.relative_dir.parent)
     twin = twin_run_dir(spec, c, root) if warm else None
     source = warm_run_dir(spec, c, root) if warm else None
-    with open(str(run_dir) + ".out", "w") as log:
+    with create_log(log_path(run_dir)) as log:
         rc = 1
         if twin is not None:
             rc = _run(bhnsid, spec, c, run_dir, twin, log)
@@ -326,122 +307,3 @@ def warm_source_config(spec: Spec, c: Config, root: Path, source: Optional[Path]
     return next((d for d in chain(spec, c) if root / d.relative_dir == source), None)
 
 
-def _checkpoint_files(run_dir: Path) -> List[Path]:
-    folder = run_dir / "checkpoints"
-    if not folder.is_dir():
-        return []
-    return [f for f in folder.iterdir() if f.name.startswith("checkpoint.") and f.is_file()]
-
-
-def _is_complete(f: Path) -> bool:
-    """checkpoint.NNNNNN (the core's name for a finished one; .partial is one being written)."""
-    digits = f.name[len("checkpoint."):]
-    return len(digits) == 6 and digits.isdigit()
-
-
-def _has_checkpoint(run_dir: Path) -> bool:
-    """A complete checkpoint there, one a warm start can read."""
-    return any(_is_complete(f) for f in _checkpoint_files(run_dir))
-
-
-def drop_checkpoints(run_dir: Path) -> None:
-    """Removes what bhnsid wrote in RUN_DIR/checkpoints (checkpoint.NNNNNN and .partial files)."""
-    for f in _checkpoint_files(run_dir):
-        f.unlink()
-    try:
-        (run_dir / "checkpoints").rmdir()
-    except OSError:
-        pass  # absent, or something else is there: not ours to remove
-
-
-def keep_newest_checkpoint(run_dir: Path) -> None:
-    """Of a converged run's checkpoints only the newest complete one, the one a warm start reads;
-    bhnsid keeps two so that a run killed while writing can resume, which a converged run never does."""
-    files = _checkpoint_files(run_dir)
-    complete = sorted((f for f in files if _is_complete(f)), key=lambda f: f.name)
-    for f in files:
-        if not complete or f != complete[-1]:
-            f.unlink()
-
-
-def tidy_checkpoints(spec: Spec, root: Path, todo: List[Config], warm: bool = True) -> int:
-    """Before a (resumed) sequence runs TODO: the checkpoints of a run only stay where a
-    configuration still to run warm-starts from them (its newest one); those of failed runs, of
-    runs no one needs any more and of an interrupted sequence's half-written ones go. Returns the
-    bytes freed."""
-    needed = set()
-    if warm:
-        for c in todo:
-            for source in (warm_run_dir(spec, c, root), twin_run_dir(spec, c, root)):
-                if source is not None:
-                    needed.add(source)
-    freed = 0
-    for c in configurations(spec):
-        run_dir = root / c.relative_dir
-        files = _checkpoint_files(run_dir)
-        if not files:
-            continue
-        before = sum(f.stat().st_size for f in files)
-        if run_dir in needed:
-            keep_newest_checkpoint(run_dir)
-        else:
-            drop_checkpoints(run_dir)
-        freed += before - sum(f.stat().st_size for f in _checkpoint_files(run_dir))
-    return freed
-
-
-def run_all(bhnsid: str, spec: Spec, root: Path, jobs: int, stream=sys.stderr, warm: bool = True,
-            retry_failed: bool = False) -> List[Outcome]:
-    """Runs every configuration not yet converged, `jobs` at a time; a failed configuration (the
-    Roche limit, no convergence) is an outcome, never an exception, and is run again on a resume
-    only when its start has changed (failed_alike) or with retry_failed. The grid of fewest points
-    first: its runs are the cheapest, so the first complete grid (one grid's minima) comes early in
-    a sequence of hours, and a fine run's coarse twin has run before it is due."""
-    todo, outcomes, kept = [], {}, []
-    for c in configurations(spec):
-        run_dir = root / c.relative_dir
-        if up_to_date(spec, c, run_dir):
-            outcomes[c] = read_outcome(c, run_dir)
-        elif not retry_failed and failed_alike(bhnsid, spec, root, c, warm):
-            kept.append(c)
-        else:
-            todo.append(c)
-    converged = len(outcomes)
-    for c in kept:
-        outcomes[c] = read_outcome(c, root / c.relative_dir)
-    freed = tidy_checkpoints(spec, root, todo, warm)
-    progress = Progress(todo, converged, stream, kept_failed=len(kept))
-    if converged:
-        progress.show(f"{converged} already converged, skipped")
-    if kept:
-        progress.show(f"{len(kept)} failed before from the same start, not run again (--retry-failed runs them)")
-    if freed:
-        progress.show(f"{freed / 2**30:.1f} GiB of checkpoints no run still to come starts from removed")
-
-    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        pending = {}
-        queue = sorted(todo, key=lambda c: c.grid.n ** 3)  # stable: the file's order within a grid
-
-        def ready(c: Config) -> bool:
-            # A run waits for the runs it would warm-start from (queued or running): its neighbour in
-            # rho_max and its coarse twin.
-            sources = [warm_source(spec, c), coarse_twin(spec, c)] if warm else []
-            return all(s is None or (s not in queue and s not in pending.values()) for s in sources)
-
-        while queue or pending:
-            while len(pending) < max(1, jobs):
-                c = next((q for q in queue if ready(q)), None)
-                if c is None:
-                    break
-                queue.remove(c)
-                pending[pool.submit(run_one, bhnsid, spec, root, c, warm)] = c
-                progress.running = len(pending)
-            finished, _ = wait(set(pending), return_when=FIRST_COMPLETED)
-            for f in finished:
-                del pending[f]
-                o = f.result()
-                outcomes[o.config] = o
-                progress.finished(o)
-                progress.running = len(pending)
-                progress.show(f"{o.config.relative_dir}: {o.status}" + (f" ({o.message[:120]})" if o.message else ""))
-    return [outcomes[c] for c in configurations(spec)]

@@ -24,7 +24,8 @@ import unittest
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "sequence"))
-from bhnsid_sequence.runs import Config, Outcome, Progress, run_all, run_one, tidy_checkpoints  # noqa: E402
+from bhnsid_sequence.pool import Progress, run_all, tidy_checkpoints  # noqa: E402
+from bhnsid_sequence.runs import Config, Outcome, run_one  # noqa: E402
 from bhnsid_sequence.spec import Grid, Spec  # noqa: E402
 
 # A stand-in for bhnsid run: converges unless rho_max is listed in $FAKE_FAIL; records where it

@@ -87,9 +87,8 @@ busy = subprocess.run([bhnsid, "sequence", str(spec), "--output", str(work / "su
 check(busy.returncode == 2 and "still queued or running (101_2)" in busy.stderr,
       "a resubmission while the sequence's jobs are queued is refused (their task lists would change)")
 queue.write_text("")
-spaced = subprocess.run([bhnsid, "sequence", str(spec), "--output", str(work / "a b"), "--slurm", "--emit-only"],
-                        capture_output=True, text=True)
-check(spaced.returncode == 2 and "#SBATCH --output" in spaced.stderr, "a directory SLURM's #SBATCH lines cannot carry is refused")
+check(re.search(r"--output=\S*/sub/slurm/rank0_%a\.out \S*/rank0\.sh$", calls[0]) is not None,
+      "each array's log path (SLURM's %a pattern) on sbatch's command line")
 
 # One task of an array, as slurmd would start it: runs that configuration exactly as the local pool.
 task = subprocess.run([bhnsid, "sequence", str(spec), "--output", str(work / "sub"), "--task",

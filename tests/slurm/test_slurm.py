@@ -55,7 +55,7 @@ check((cluster / "sequence.json").exists() and (cluster / "slurm" / "reduce.out"
 
 # Each rank after the one before: a run's log starts after its chain predecessor's summary was written.
 order_ok = True
-for g in ("grid0_n32_dx0.12", "grid1_n28_dx0.137143", "grid2_n24_dx0.12"):
+for g in sorted(p.name for p in cluster.glob("grid*_n*") if p.is_dir()):
     for xa in ("xa0.25", "xa0.35"):
         previous_end = 0.0
         for rho in ("rho0.07", "rho0.08", "rho0.09", "rho0.1"):
