@@ -170,7 +170,8 @@ def submit(jobs: List[Dict], emit_only: bool, stream=None) -> List[str]:
     ids: List[str] = []
     previous: Optional[str] = None
     for job in jobs:
-        cmd = [sbatch or "sbatch", "--parsable"]
+        # Pasted lines name plain sbatch: they run on the cluster's login node, whose PATH finds its own.
+        cmd = ["sbatch" if emit_only or not sbatch else sbatch, "--parsable"]
         after = ids if job["kind"] == "reduce" else ([previous] if previous else [])
         if after:
             cmd.append("--dependency=afterany:" + ":".join(after))
