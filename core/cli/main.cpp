@@ -31,7 +31,16 @@ std::string shell_quote(const std::string& arg) {
 }
 // The one error line, best effort: a stderr that cannot be written (a full disk, a closed pipe)
 // must not turn a clean exit code into an abort.
-void complain(const std::string& line) { std::fputs(line.c_str(), stderr); }
+// One line, whatever a name in it holds: a newline in a --set key or a NUL in a file is shown as \xNN.
+void complain(const std::string& line) {
+  std::string out;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const auto c = static_cast<unsigned char>(line[i]);
+    const bool last_newline = c == '\n' && i + 1 == line.size();
+    out += (c < 0x20 && !last_newline) || c == 0x7f ? fmt::format("\\x{:02x}", c) : std::string(1, line[i]);
+  }
+  std::fputs(out.c_str(), stderr);
+}
 
 // `bhnsid NAME ARGS...` for a NAME that is no built-in command runs `bhnsid-NAME ARGS...` from
 // the executable's folder, git-style: tools built beside bhnsid (bhnsid-export, of the reader)

@@ -399,7 +399,7 @@ int cmd_validate(const std::string& parfile, const CommonOptions& common, const 
   out["axis_region"] = coarse.regions;
   out["passed"] = passed;
   directory.record("validate.json");
-  write_file_atomic(dir / "validate.json", out.dump(1) + "\n");
+  write_file_atomic(dir / "validate.json", out.dump(1, ' ', false, json::error_handler_t::replace) + "\n");
   say("\nvalidate: {} ({} levels, threshold {:.2f}); validate.json in {}\n", passed ? "PASSED" : "FAILED",
              opt.levels, opt.threshold, dir.string());
   if (opt.plots) {

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "bhnsid/core/errors.hpp"
+#include "bhnsid/core/owned_entry.hpp"
 
 namespace bhnsid::core {
 
@@ -28,6 +29,8 @@ void fsync_directory(const fs::path& dir) {
 }  // namespace
 
 void write_file_atomic(const fs::path& path, const std::string& contents) {
+  // A link, FIFO or folder at the final name is not ours to replace (the rename would drop it silently).
+  require_own_entry(path, EntryKind::regular_file);
   std::string temp = path.string() + ".tmp.XXXXXX";
   const int fd = ::mkstemp(temp.data());
   if (fd < 0) fail(path, "create a temporary file for writing", errno);
@@ -62,6 +65,7 @@ void write_file_atomic(const fs::path& path, const std::string& contents) {
 }
 
 void commit_file(const fs::path& from, const fs::path& to) {
+  require_own_entry(to, EntryKind::regular_file);
   const int fd = ::open(from.c_str(), O_RDONLY);
   if (fd >= 0) {
     ::fsync(fd);

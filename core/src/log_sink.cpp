@@ -47,8 +47,7 @@ void copy_into(int fd, const std::filesystem::path& from) {
 void LogSink::open_file(const std::filesystem::path& partial, bool append, const std::filesystem::path& final_path) {
   int fd = -1;
   if (append && require_own_entry(partial, EntryKind::regular_file)) {
-    fd = ::open(partial.c_str(), O_WRONLY | O_APPEND | O_NOFOLLOW | O_CLOEXEC);
-    if (fd < 0) throw InputError(fmt::format("{}: cannot open the log: {}", partial.string(), std::strerror(errno)));
+    fd = open_own_file_for_appending(partial);
   } else {
     fd = create_fresh_file(partial);
     try {

@@ -228,7 +228,8 @@ std::string summary_json(const RunState& state, const RunResult& result, const s
   j["provenance"] = {{"version", p.version},   {"git_revision", p.git_revision}, {"build_type", p.build_type},
                      {"compiler", p.compiler}, {"host", p.host},                 {"date", p.date},
                      {"command_line", p.command_line}};
-  return j.dump(2) + "\n";
+  // A name holding bytes that are not UTF-8 (a directory called \xff) is kept, replaced by U+FFFD.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace
@@ -361,6 +362,7 @@ RunResult run(const Configuration& config, const RunOptions& options) {
     }
     throw;
   }
+  if (options.resume) directory.take_over();
   const Log log(&state.sink, "");
   log.info("bhnsid {} ({}): {}", prov.version, prov.git_revision, comment_safe(options.command_line));
   log.info("run directory: {}", state.run_dir.string());

@@ -318,7 +318,7 @@ ResumePoint find_resume_point(const fs::path& run_dir, const Configuration& conf
       point.file = std::make_unique<CheckpointFileReader>(checkpoint_path(dir, iteration));
     } catch (const InputError& e) {
       log.warn("{}; trying an older checkpoint", e.what());
-      refused += fmt::format("\n  {}", e.what());
+      refused += fmt::format("{} {}", refused.empty() ? "" : ";", e.what());
       continue;
     }
     CheckpointFileReader& f = *point.file;

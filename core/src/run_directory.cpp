@@ -83,11 +83,18 @@ Marker read_marker(const fs::path& dir) {
   return m;
 }
 
-// A temporary file of write_file_atomic ("NAME.tmp.XXXXXX") left by a killed run of ours.
-bool is_our_temporary(const std::string& entry, const std::vector<std::string>& files) {
+// A temporary file of write_file_atomic ("NAME.tmp.XXXXXX") left by a killed run of ours: by its name
+// beside a recorded NAME, and a regular file of one name (a folder or a link so named is the user's).
+bool is_our_temporary_name(const std::string& entry, const std::vector<std::string>& files) {
   for (const std::string& f : files)
     if (entry.size() == f.size() + 11 && entry.compare(0, f.size() + 5, f + ".tmp.") == 0) return true;
   return entry.size() == std::strlen(run_marker_name) + 11 && entry.rfind(std::string(run_marker_name) + ".tmp.", 0) == 0;
+}
+
+bool is_our_temporary(const fs::path& dir, const std::string& entry, const std::vector<std::string>& files) {
+  struct stat st {};
+  return is_our_temporary_name(entry, files) && ::lstat((dir / entry).c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
+         st.st_nlink == 1;
 }
 
 // Entry names of a directory, without the exceptions of a range-for over directory_iterator.
@@ -129,7 +136,7 @@ void inspect_folder(const fs::path& dir, const std::string& prefix, OldContents&
 
 void inspect(const fs::path& dir, const Marker& marker, const std::string& prefix, OldContents& out) {
   for (const std::string& name : entries_of(dir)) {
-    if (name == run_marker_name || is_our_temporary(name, marker.files)) continue;
+    if (name == run_marker_name || is_our_temporary(dir, name, marker.files)) continue;
     if (listed(marker.folders, name)) {
       inspect_folder(dir / name, prefix + name, out);
       continue;
@@ -162,9 +169,15 @@ void inspect(const fs::path& dir, const Marker& marker, const std::string& prefi
 void remove_old_run(const fs::path& dir, const Marker& marker) {
   for (const std::string& name : entries_of(dir)) {
     if (name == run_marker_name) continue;
-    if (!listed(marker.files, name) && !listed(marker.folders, name) && !is_our_temporary(name, marker.files))
+    const bool temporary = is_our_temporary(dir, name, marker.files);
+    if (!listed(marker.files, name) && !listed(marker.folders, name) && !temporary)
       continue;  // cannot happen after inspect(); never remove what is not listed
     std::error_code ec;
+    if (temporary && !listed(marker.files, name)) {
+      fs::remove(dir / name, ec);
+      if (ec) throw InputError(fmt::format("{}: cannot remove the old run's {}: {}", dir.string(), name, ec.message()));
+      continue;
+    }
     if (listed(marker.folders, name) && !listed(marker.files, name)) {
       // inspect() found nothing but our own entries there: those go, then the folder if empty.
       for (const std::string& entry : entries_of(dir / name))
@@ -322,9 +335,12 @@ RunDirectory::RunDirectory(fs::path dir, std::string kind, ReopenTag)
                                    dir_.string(), run_marker_name));
     if (old.kind != kind_)
       throw InputError(fmt::format("{}: is a bhnsid {} directory, not a {} directory", dir_.string(), old.kind, kind_));
+    // Everything the earlier run wrote is checked now, before the resume computes anything: a link or
+    // FIFO left at summary.json would otherwise be found only when the run ends.
+    for (const std::string& f : old.files) require_own_entry(dir_ / f, EntryKind::regular_file);
+    for (const std::string& f : old.folders) require_own_entry(dir_ / f, EntryKind::folder);
     files_ = old.files;
     folders_ = old.folders;
-    write_marker();
   } catch (...) {
     ::close(fd_);
     fd_ = -1;
@@ -342,6 +358,8 @@ void RunDirectory::record(const std::string& name) {
   write_marker();
 }
 
+void RunDirectory::take_over() { write_marker(); }
+
 void RunDirectory::record_folder(const std::string& name) {
   if (listed(folders_, name)) return;
   folders_.push_back(name);
@@ -357,7 +375,7 @@ void RunDirectory::write_marker() {
   j["started"] = started_;
   j["files"] = files_;
   if (!folders_.empty()) j["folders"] = folders_;
-  write_file_atomic(dir_ / run_marker_name, j.dump(1) + "\n");
+  write_file_atomic(dir_ / run_marker_name, j.dump(1, ' ', false, json::error_handler_t::replace) + "\n");
 }
 
 void RunDirectory::abandon() {

@@ -33,7 +33,12 @@ Handle::~Handle() {
   if (id_ >= 0 && close_) close_(id_);
 }
 
-H5File::H5File(const std::string& path) {
+H5File::H5File(const std::string& path) : path_(path) {
+  // A write the disk refused leaves the file open inside HDF5 (its close fails too), and HDF5's exit
+  // handler then crashed closing it again (exit 139 after a clear error). Every file that matters is
+  // closed here; the library need not clean up at exit. Only the first call, before HDF5 starts, counts.
+  static const bool no_exit_handler = H5dont_atexit() >= 0;
+  (void)no_exit_handler;
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   file_ = Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "create " + path);
 }
@@ -103,8 +108,8 @@ void H5File::attribute(hid_t object, const std::string& name, const std::vector<
 
 void H5File::close() {
   open_.clear();
-  checked(H5Fflush(file_.id(), H5F_SCOPE_GLOBAL), "write the file (is the disk full?)");
-  checked(H5Fclose(file_.release()), "close the file (is the disk full?)");
+  checked(H5Fflush(file_.id(), H5F_SCOPE_GLOBAL), "write " + path_ + " (is the disk full?)");
+  checked(H5Fclose(file_.release()), "close " + path_ + " (is the disk full?)");
 }
 
 }  // namespace bhnsid::io_hdf5

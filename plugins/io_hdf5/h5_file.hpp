@@ -54,6 +54,7 @@ class H5File {
   void close();
 
  private:
+  std::string path_;
   Handle file_;
   std::vector<Handle> open_;  // groups and datasets, closed with the file
 };

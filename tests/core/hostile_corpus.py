@@ -119,6 +119,33 @@ for entry in ["log.txt.partial", "blob.bin.partial", "params.yaml", "checkpoints
     case("fifos", f"--resume with {entry} a FIFO", want)(fifo_case)
 
 
+for entry in ["summary.json", "timers.tsv", "scalars.tsv", "blob.bin"]:
+    def final_link(w, entry=entry):
+        w.stopped()
+        w.link(entry)
+        return resume(w), None
+    case("links", f"--resume with the final {entry} a link to the user's file", {2}, "symbolic link")(final_link)
+
+
+def hard_link(w):
+    w.stopped()
+    os.link(w.victim, os.path.join(w.out, "log.txt.partial"))
+    return resume(w), None
+
+
+case("links", "--resume with log.txt.partial a hard link to the user's file", {2}, "hard link")(hard_link)
+def temporary_lookalike(w):
+    w.stopped()
+    os.makedirs(os.path.join(w.out, "params.yaml.tmp.backup"))
+    w.write("stopped/params.yaml.tmp.backup/notes.txt", "mine\n")
+    return ["run", w.par, "--output", w.out, "--force"], None
+
+
+case("foreign", "--force beside a folder named like a temporary of ours (params.yaml.tmp.backup/)", {2},
+     "params.yaml.tmp.backup")(temporary_lookalike)
+case("names", "run --output with a byte that is not UTF-8", {0})(lambda w: (["run", w.par, "--output", "r\udcff"], None))
+
+
 def linked_folder(w):
     w.stopped()
     elsewhere = os.path.join(w.root, "elsewhere")
@@ -212,6 +239,8 @@ def run_case(c):
         w = Work(root)
         args, act = c["fn"](w)
         victim_before = open(w.victim).read()
+        marker = os.path.join(w.out, ".bhnsid-run.json")
+        marker_before = open(marker, "rb").read() if os.path.isfile(marker) and not os.path.islink(marker) else None
         t0 = time.monotonic()
         if act is None:
             try:
@@ -246,6 +275,8 @@ def run_case(c):
         for bad in ("Traceback", "internal error", "AddressSanitizer", "runtime error:"):
             if bad in err:
                 problems.append(f"stderr holds {bad!r}")
+        if rc == 2 and marker_before is not None and os.path.isfile(marker) and open(marker, "rb").read() != marker_before:
+            problems.append("a refused command rewrote the run directory's marker")
         if open(w.victim).read() != victim_before:
             problems.append("the user's file changed")
         for d, _, files in os.walk(root):

@@ -163,3 +163,55 @@ TEST_CASE("core.owned_entries.two_resumes_of_one_directory_cannot_both_run", "[c
   CHECK_THAT(r.err, Contains("in use by another bhnsid process"));
   CHECK(read_file(s.out / "log.txt") == log_before);
 }
+
+TEST_CASE("core.owned_entries.a_hard_link_or_a_name_like_ours_is_the_users", "[core][hostile][resume]") {
+  SECTION("--resume appends to no hard link") {
+    Stopped s;
+    REQUIRE(::link(s.victim.c_str(), (s.out / "log.txt.partial").c_str()) == 0);
+    const ProcessResult r = s.resume();
+    INFO("stderr: " << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains("log.txt.partial") && Contains("hard link"));
+    CHECK(read_file(s.victim) == "my thesis\n");
+  }
+  SECTION("--force removes no folder or file of the user's that is named like our temporaries") {
+    Stopped s;
+    fs::create_directories(s.out / "params.yaml.tmp.backup");
+    const auto kept = s.dir.write("stopped/params.yaml.tmp.backup/thesis.tex", "chapter 1\n");
+    const ProcessResult r = run(s.parfile, s.out, {"--force"});
+    INFO("stderr: " << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains("params.yaml.tmp.backup"));
+    CHECK(read_file(kept) == "chapter 1\n");
+  }
+  SECTION("a refused resume leaves the marker as it was") {
+    Stopped s;
+    const std::string marker = read_file(s.out / ".bhnsid-run.json");
+    fs::create_symlink(s.victim, s.out / "log.txt.partial");
+    CHECK(s.resume().exit_code == 2);
+    CHECK(read_file(s.out / ".bhnsid-run.json") == marker);
+  }
+  SECTION("a link at a final name is refused, not silently replaced") {
+    Stopped s;
+    fs::remove(s.out / "summary.json");
+    fs::create_symlink(s.victim, s.out / "summary.json");
+    const ProcessResult r = s.resume();
+    INFO("stderr: " << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains("summary.json") && Contains("symbolic link"));
+    CHECK(fs::is_symlink(s.out / "summary.json"));
+    CHECK(read_file(s.victim) == "my thesis\n");
+  }
+}
+
+TEST_CASE("core.owned_entries.a_name_that_is_not_utf8_is_kept", "[core][hostile]") {
+  // A run directory named with the byte 0xff ran, then ended as an internal error (exit 3) when its
+  // summary.json, which quotes the command line, was written as JSON.
+  Stopped s;
+  const fs::path out = s.dir.path() / std::string("r\xff");
+  const ProcessResult r = run(s.parfile, out);
+  INFO("stderr: " << r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(fs::exists(out / "summary.json"));
+  CHECK(fs::exists(out / "log.txt"));
+}

@@ -218,3 +218,20 @@ TEST_CASE("plugins.io_hdf5.interrupted_run_is_marked_interrupted", "[plugins][io
   CHECK(f.text("/", "status") == "interrupted");
   CHECK(f.text("/", "failure").empty());
 }
+
+TEST_CASE("plugins.io_hdf5.a_refused_write_is_an_error_not_a_crash", "[plugins][io_hdf5]") {
+  // With a file-size limit (ulimit -f, a full disk) the refused data.h5 write was reported, and then
+  // HDF5's exit handler crashed closing the half-written file again: exit 139, no summary.json.
+  TempDir dir;
+  const auto out = dir.path() / "run";
+  const ProcessResult r = run_bhnsid({"run", (source_dir() / "parfiles" / "quickstart.yaml").string(), "--output",
+                                      out.string(), "--set", "run.checkpoint_every=0"},
+                                     {}, 2L << 20);
+  INFO(r.err);
+  CHECK(r.signal == 0);
+  CHECK((r.exit_code == 1 || r.exit_code == 2));
+  CHECK_THAT(r.err, Contains("data.h5"));
+  CHECK(std::filesystem::exists(out / "summary.json"));
+  CHECK_FALSE(std::filesystem::exists(out / "data.h5"));
+  CHECK_FALSE(std::filesystem::exists(out / "data.h5.partial"));
+}

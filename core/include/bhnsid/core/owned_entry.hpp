@@ -22,6 +22,10 @@ bool require_own_entry(const std::filesystem::path& path, EntryKind kind);
 /// Returns the open descriptor.
 int create_fresh_file(const std::filesystem::path& path);
 
+/// Opens an existing file of ours to append to it (a resumed run's log): a regular file with no
+/// other name (a hard link would carry the appended lines into the user's file); InputError otherwise.
+int open_own_file_for_appending(const std::filesystem::path& path);
+
 /// Opens an existing regular file of a run directory for reading without following a symbolic link
 /// and without waiting on a FIFO (O_NONBLOCK, then fstat); InputError naming it otherwise. `what`
 /// names the file's role in the message ("the checkpoint").

@@ -21,7 +21,8 @@ class RunDirectory {
   /// InputError naming the directory and the reason; on failure nothing is left that was not there.
   RunDirectory(std::filesystem::path dir, bool force, std::string kind, const std::vector<std::filesystem::path>& protect);
   /// Reopens the directory of an earlier run of `kind` to continue it (bhnsid run --resume):
-  /// locks it and keeps everything in it; abandon() then removes nothing.
+  /// locks it and keeps everything in it, its marker included until take_over(); abandon() then
+  /// removes nothing.
   struct ReopenTag {};
   RunDirectory(std::filesystem::path dir, std::string kind, ReopenTag);
   ~RunDirectory();
@@ -29,6 +30,9 @@ class RunDirectory {
   RunDirectory& operator=(const RunDirectory&) = delete;
 
   const std::filesystem::path& path() const { return dir_; }
+  /// Marks a reopened directory as this process's (its PID in the marker), once the resume is
+  /// known to go ahead: a refused one leaves the marker as it was.
+  void take_over();
   /// Records, before it is written, that the program writes `name` (a file or sub-directory
   /// directly inside), so that a later --force may replace it.
   void record(const std::string& name);
