@@ -100,6 +100,17 @@ def main(argv):
     check(r.returncode == 2 and "order 5" in r.stderr, "odd order: %s" % r.stderr)
     r = run(exe, data)
     check(r.returncode == 2 and "--points" in r.stderr, "no --points: %s" % r.stderr)
+    # A file-size limit (ulimit -f) killed export by SIGXFSZ, silently, its temporary left behind.
+    many = os.path.join(work, "many_points.txt")
+    with open(many, "w") as f:
+        f.write("0 0 0\n" * 20000)
+    limited = os.path.join(work, "limited")
+    os.makedirs(limited, exist_ok=True)
+    r = subprocess.run([exe, data, "--points", many, "--output", os.path.join(limited, "t.tsv")], capture_output=True,
+                       text=True, preexec_fn=lambda: __import__("resource").setrlimit(
+                           __import__("resource").RLIMIT_FSIZE, (65536, 65536)))
+    check(r.returncode in (1, 2) and r.stderr.count("\n") == 1 and os.listdir(limited) == [],
+          "a file-size limit: exit %d, %r, left %s" % (r.returncode, r.stderr, os.listdir(limited)))
     print("%d failure(s)" % len(failures))
     return 1 if failures else 0
 
