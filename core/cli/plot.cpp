@@ -284,7 +284,15 @@ int cmd_plot(const std::string& run_dir, const std::string& output, const Common
 
   const fs::path out = output.empty() ? run / "plots" : fs::path(output);
   const bool created = !core::require_own_entry(out, core::EntryKind::folder);
-  if (created) fs::create_directories(out);
+  // The folders above `out` that plot makes, outermost last: removed again with it when no picture comes.
+  std::vector<fs::path> made;
+  if (created) {
+    fs::path start = out.lexically_normal();
+    if (!start.has_filename() && start.has_parent_path()) start = start.parent_path();  // "a/b/" names a/b
+    for (fs::path p = start; !p.empty() && p != p.parent_path() && !fs::exists(p); p = p.parent_path())
+      made.push_back(p);
+    fs::create_directories(out);
+  }
   const std::set<std::string> record = read_record(out);
   // Debian's interpreter, where matplotlib and h5py are installed (scripts/install-deps.sh).
   const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
@@ -293,7 +301,8 @@ int cmd_plot(const std::string& run_dir, const std::string& output, const Common
   // A folder made for pictures that never came is removed again (rmdir: only when empty).
   const auto tidy = [&] {
     staging.reset();
-    if (created) ::rmdir(out.c_str());
+    for (const fs::path& p : made)
+      if (::rmdir(p.c_str()) != 0) break;  // not empty: something else lives there now
   };
   int failed = 0, bad_input = 0;
   for (const auto& [name, script] : scripts) {

@@ -37,7 +37,8 @@ class ReaderError(Exception):
     """An error with the C library's status code in .code."""
 
     def __init__(self, code, message):
-        super().__init__(message)
+        # One line whatever a path or a field name holds, as the C library and bhnsid-export write it.
+        super().__init__("".join("\\x%02x" % ord(c) if ord(c) < 0x20 or ord(c) == 0x7F else c for c in str(message)))
         self.code = code
 
 

@@ -276,6 +276,12 @@ def still_link(name):
     return check
 
 
+def no_entry(name):
+    def check(w, v, rc, out, err):
+        return ["%s was left behind" % name] if os.path.lexists(os.path.join(w, name)) else []
+    return check
+
+
 def empty_folder(name):
     def check(w, v, rc, out, err):
         left = os.listdir(os.path.join(w, name))
@@ -557,6 +563,10 @@ CASES = [
          setup=steps(run_copy(), replace_in_run("data.h5", lambda p, v: os.mkfifo(p)))),
     case("plot_missing_data", "plot-inputs", "damaged-hdf5", "plot", ["{r}"], 2, "data.h5: is missing",
          setup=steps(run_copy(), replace_in_run("data.h5", lambda p, v: None))),
+    # No picture: the folders plot made for them go again, the ones above the output included.
+    case("plot_nothing_into_new_folders", "plot-inputs", "folder", "plot", ["{r}", "--output", "{w}/new/deep/pics/"], 2,
+         "data.h5: is missing", setup=steps(run_copy(), replace_in_run("data.h5", lambda p, v: None)),
+         check=no_entry("new")),
     # equator.png is drawn before the history fails: a failed script's pictures are not kept.
     case("plot_garbled_history", "plot-inputs", "damaged-hdf5", "plot", ["{r}"], 2, "star_history.tsv:3:",
          setup=steps(run_copy(), in_run("star_history.tsv", "# iteration sigma omega_hat bernoulli_constant change\n"
