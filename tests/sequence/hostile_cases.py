@@ -11,15 +11,9 @@ build's, {SRC} the source tree. Preparation steps, in order:
   ("first_run",)          the default sequence run once (two converged runs in SEQ)
   ("lock", PATH)          the runner holds an flock on PATH during the case"""
 
-SPEC = """sequence:
-  base: base.yaml
-  mass_ratio: 1.0
-  x_a: [0.25]
-  rho_max: [0.08, 0.09]
-  targets: [0.6]
-  grids: [{n: 24, dx: 0.16}]
-  threads: 1
-"""
+from checklist import TINY_SPEC  # noqa: E402  (test_hostile.py runs from this folder)
+
+SPEC = TINY_SPEC + "  threads: 1\n"
 RUN = "{SEQ}/grid0_n24_dx0.16/xa0.25/rho0.08"
 DEFAULT = ["{W}/spec.yaml", "--output", "{SEQ}", "--bhnsid", "{FAKE}"]
 PWN = "$(touch PWNED)"

@@ -24,14 +24,7 @@ from bhnsid_sequence import cli, safe_io  # noqa: E402
 from bhnsid_sequence.checkpoints import drop_checkpoints, keep_newest_checkpoint  # noqa: E402
 from bhnsid_sequence.safe_io import InputError, write_atomic  # noqa: E402
 
-SPEC = """sequence:
-  base: base.yaml
-  mass_ratio: 1.0
-  x_a: [0.25]
-  rho_max: [0.08, 0.09]
-  targets: [0.6]
-  grids: [{n: 24, dx: 0.16}]
-"""
+from checklist import TINY_SPEC as SPEC  # noqa: E402
 
 
 class Links(unittest.TestCase):

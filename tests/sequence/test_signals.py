@@ -15,13 +15,11 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from checklist import Checklist, arguments  # noqa: E402
+from checklist import Checklist, arguments, stand_in_bhnsid  # noqa: E402
 
 bin_dir, source, work, bhnsid = arguments()
 check = Checklist()
-fake = work / "bhnsid"
-fake.write_text((Path(__file__).resolve().parent / "fake_bhnsid.py").read_text())
-fake.chmod(0o755)
+fake = stand_in_bhnsid(work)
 
 
 def sequence_file(name, base, grids="[{n: 24, dx: 0.16}]"):

@@ -12,13 +12,11 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from checklist import Checklist, arguments  # noqa: E402
+from checklist import Checklist, arguments, stand_in_bhnsid  # noqa: E402
 
 bin_dir, source, work, bhnsid = arguments()
 check = Checklist()
-fake = work / "bhnsid"
-fake.write_text((Path(__file__).resolve().parent / "fake_bhnsid.py").read_text())
-fake.chmod(0o755)
+fake = stand_in_bhnsid(work)
 (work / "base.yaml").write_text("grid: {n: 24}\n")
 spec = work / "spec.yaml"
 spec.write_text("sequence:\n  base: base.yaml\n  mass_ratio: 1.0\n  x_a: [0.25]\n  rho_max: [0.08, 0.09]\n"

@@ -27,14 +27,7 @@ from bhnsid_sequence.pipeline import at_targets  # noqa: E402
 from bhnsid_sequence.runs import Outcome, coarse_twin, configurations, warm_source  # noqa: E402
 from bhnsid_sequence.spec import SpecError, read_spec  # noqa: E402
 
-SPEC = """sequence:
-  base: base.yaml
-  mass_ratio: 1.0
-  x_a: [0.25]
-  rho_max: [0.08, 0.09]
-  targets: [0.6]
-  grids: [{n: 24, dx: 0.16}]
-"""
+from checklist import TINY_SPEC as SPEC  # noqa: E402
 
 
 def spec_with(**changes):
