@@ -72,8 +72,12 @@ def hold_lock(root: Path):
             return None, holder or "a process"
         raise InputError(f"{path}: cannot lock: {e.strerror} (a file system without flock, such as Lustre "
                          f"mounted without -o flock?)")
-    os.ftruncate(fd, 0)
-    os.pwrite(fd, f"pid {os.getpid()} on {socket.gethostname()}\n".encode(), 0)
+    try:
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, f"pid {os.getpid()} on {socket.gethostname()}\n".encode(), 0)
+    except OSError as e:  # a full disk or a file-size limit: the lock is held, its holder not written
+        os.close(fd)
+        raise InputError(f"{path}: cannot write the lock's holder: {e.strerror}")
     return fd, None
 
 

@@ -200,6 +200,9 @@ CASES = [
     # Resources: a full disk, closed output streams.
     case("resources", "file_size_limit_on_results", 2, "File too large", fsize=2000, absent=["seq/*.partial"]),
     case("resources", "file_size_limit_at_once", 2, "File too large", fsize=1),
+    # Resumed: the lock's holder line, when it is the write refused, named no file.
+    case("resources", "file_size_limit_on_resume_names_the_file", 2, ": cannot write", fsize=1,
+         prepare=[("first_run",)]),
     case("resources", "stdout_closed", 0, close_stdout=True, keeps=["seq/sequence.json"]),
     case("resources", "stdout_and_stderr_closed", 0, close_stdout=True, close_stderr=True, keeps=["seq/sequence.json"]),
     # Signals.
