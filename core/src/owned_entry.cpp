@@ -58,48 +58,45 @@ int create_fresh_file(const fs::path& path) {
   return fd;
 }
 
-int open_own_file_for_appending(const fs::path& path) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
+namespace {
+
+// Opens a regular file of ours with `access` flags, never through a link and never waiting on a
+// FIFO (O_NONBLOCK, then fstat; the flag is cleared again); `st` receives its status.
+int open_own_regular(const fs::path& path, int access, const std::string& what, struct stat& st) {
+  const int fd = ::open(path.c_str(), access | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
   if (fd < 0) {
     const int error = errno;
-    struct stat st {};
-    if (error == ELOOP && ::lstat(path.c_str(), &st) == 0) refuse(path, st.st_mode, EntryKind::regular_file);
-    throw InputError(fmt::format("{}: cannot open it to append: {}", path.string(), std::strerror(error)));
+    struct stat link {};
+    if (error == ELOOP && ::lstat(path.c_str(), &link) == 0) refuse(path, link.st_mode, EntryKind::regular_file);
+    throw InputError(fmt::format("{}: cannot open {}: {}", path.string(), what, std::strerror(error)));
   }
-  struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     const mode_t mode = st.st_mode;
     ::close(fd);
     refuse(path, mode, EntryKind::regular_file);
-  }
-  if (st.st_nlink != 1) {
-    ::close(fd);
-    throw InputError(fmt::format("{}: has {} names (a hard link to another file); bhnsid appends only to a file of its "
-                                 "own: move it away",
-                                 path.string(), st.st_nlink));
   }
   const int flags = ::fcntl(fd, F_GETFL);
   if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
   return fd;
 }
 
-int open_own_file_for_reading(const fs::path& path, const std::string& what) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
-  if (fd < 0) {
-    const int error = errno;
-    struct stat st {};
-    if (error == ELOOP && ::lstat(path.c_str(), &st) == 0) refuse(path, st.st_mode, EntryKind::regular_file);
-    throw InputError(fmt::format("{}: cannot open {}: {}", path.string(), what, std::strerror(error)));
-  }
+}  // namespace
+
+int open_own_file_for_appending(const fs::path& path) {
   struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    const mode_t mode = st.st_mode;
+  const int fd = open_own_regular(path, O_WRONLY | O_APPEND, "it to append", st);
+  if (st.st_nlink != 1) {
     ::close(fd);
-    refuse(path, mode, EntryKind::regular_file);
+    throw InputError(fmt::format("{}: has {} names (a hard link to another file); bhnsid appends only to a file of its "
+                                 "own: move it away",
+                                 path.string(), st.st_nlink));
   }
-  const int flags = ::fcntl(fd, F_GETFL);
-  if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
   return fd;
+}
+
+int open_own_file_for_reading(const fs::path& path, const std::string& what) {
+  struct stat st {};
+  return open_own_regular(path, O_RDONLY, what, st);
 }
 
 }  // namespace bhnsid::core
