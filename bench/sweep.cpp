@@ -70,7 +70,7 @@ int vector_sweep(int max_n, int threads, const std::string& lower_term) {
     } else if (lower_term == "momentum") {
       momentum::Sources s;
       s.chi = k.chi.data();
-      s.eta = k.eta.data();
+      s.weight = k.eta.data();
       s.sy = lv.sy;
       s.sz = lv.sz;
       s.inv_2h = 0.5 / lv.dx;
@@ -78,7 +78,7 @@ int vector_sweep(int max_n, int threads, const std::string& lower_term) {
     } else {
       shift::Sources s;
       s.chi = k.chi.data();
-      s.eta = k.eta.data();
+      s.alpha = k.eta.data();  // any smooth positive field: the sweep's cost is what it streams
       for (int a = 0; a < 6; ++a) s.ahat[a] = k.ahat[a].data();
       s.half_mass = 0.5;
       s.x0 = lv.origin[0] - 0.1;

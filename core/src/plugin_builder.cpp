@@ -43,12 +43,20 @@ ParamHandle& ParamHandle::refines(Refinement how) {
 }
 
 ScheduleHandle& ScheduleHandle::doc(std::string text) { decl_->schedule[index_].doc = std::move(text); return *this; }
-ScheduleHandle& ScheduleHandle::before(std::string full_name) {
-  decl_->schedule[index_].before.push_back(std::move(full_name));
+ScheduleHandle& ScheduleHandle::before(std::string reference) {
+  decl_->schedule[index_].before.push_back({std::move(reference), false});
   return *this;
 }
-ScheduleHandle& ScheduleHandle::after(std::string full_name) {
-  decl_->schedule[index_].after.push_back(std::move(full_name));
+ScheduleHandle& ScheduleHandle::after(std::string reference) {
+  decl_->schedule[index_].after.push_back({std::move(reference), false});
+  return *this;
+}
+ScheduleHandle& ScheduleHandle::before_if_present(std::string reference) {
+  decl_->schedule[index_].before.push_back({std::move(reference), true});
+  return *this;
+}
+ScheduleHandle& ScheduleHandle::after_if_present(std::string reference) {
+  decl_->schedule[index_].after.push_back({std::move(reference), true});
   return *this;
 }
 
@@ -156,6 +164,14 @@ void validate_declaration(const PluginDecl& decl) {
     if (!is_identifier(e.name)) fail(fmt::format("a schedule entry named '{}'", e.name));
     if (!seen.insert(e.name).second) fail(fmt::format("schedule entry '{}' twice", e.name));
     if (e.bin == Bin::check ? !e.check : !e.fn) fail(fmt::format("schedule entry '{}' without a function", e.name));
+    for (const auto* refs : {&e.before, &e.after})
+      for (const auto& r : *refs) {
+        const std::size_t dot = r.target.rfind('.');
+        if (dot == std::string::npos || !is_capability_name(r.target.substr(0, dot)) ||
+            !is_identifier(r.target.substr(dot + 1)))
+          fail(fmt::format("schedule entry '{}' ordered against '{}' (expected 'capability.entry', e.g. 'lapse.setup')",
+                           e.name, r.target));
+      }
   }
   for (const auto& m : decl.memory)
     if (!m.fn) fail("a memory estimate without a function");

@@ -11,28 +11,29 @@ namespace bhnsid::core {
 
 namespace {
 
-const ScheduleEntry* find_entry(const std::vector<const PluginDecl*>& plugins, const std::string& full_name,
-                                bool& plugin_active) {
-  const auto dot = full_name.find('.');
-  const std::string plugin = full_name.substr(0, dot);
-  const std::string name = dot == std::string::npos ? std::string{} : full_name.substr(dot + 1);
-  plugin_active = false;
+// The entry a reference names, or nullptr for an absent optional capability; every other failure
+// to resolve is an InputError that names the entry, the reference and what is missing.
+const ScheduleEntry* resolve(const std::vector<const PluginDecl*>& plugins, const ScheduleEntry& from,
+                             const ScheduleRef& ref, const char* direction) {
+  const std::size_t dot = ref.target.rfind('.');
+  const std::string capability = ref.target.substr(0, dot == std::string::npos ? 0 : dot);
+  const std::string entry = dot == std::string::npos ? std::string{} : ref.target.substr(dot + 1);
+  const auto says = [&](const std::string& why) {
+    return InputError(fmt::format("schedule: {} is to run {} '{}', but {}", from.full_name(), direction, ref.target, why));
+  };
+  if (capability.empty() || entry.empty()) throw says("a reference is 'capability.entry'");
   for (const auto* decl : plugins) {
-    if (decl->name != plugin) continue;
-    plugin_active = true;
+    if (std::find(decl->implements.begin(), decl->implements.end(), capability) == decl->implements.end()) continue;
     for (const auto& e : decl->schedule)
-      if (e.name == name) return &e;
+      if (e.name == entry) return &e;
+    throw says(fmt::format("{}, which implements '{}', has no entry '{}'", decl->name, capability, entry));
   }
-  if (plugin_active) return nullptr;
-  // "capability.entry": the entry of the active plugin that implements the capability, so that a
-  // plugin orders itself against a role (hydro.outer_step) without naming the plugin that fills it.
-  for (const auto* decl : plugins) {
-    if (std::find(decl->implements.begin(), decl->implements.end(), plugin) == decl->implements.end()) continue;
-    plugin_active = true;
-    for (const auto& e : decl->schedule)
-      if (e.name == name) return &e;
-  }
-  return nullptr;
+  if (ref.if_present) return nullptr;
+  for (const auto* decl : plugins)
+    if (decl->name == capability)
+      throw says(fmt::format("references name a capability, and the plugin '{}' implements {}", capability,
+                             decl->implements.empty() ? std::string("none") : fmt::format("'{}'", fmt::join(decl->implements, "', '"))));
+  throw says(fmt::format("no active plugin implements '{}' (add one that does to plugins:)", capability));
 }
 
 // Kahn's algorithm; among the ready entries the earliest in (plugin order, declaration order) goes first.
@@ -51,15 +52,11 @@ std::vector<const ScheduleEntry*> order_bin(const std::vector<const ScheduleEntr
     const ScheduleEntry& e = *entries[i];
     for (int direction = 0; direction < 2; ++direction) {
       for (const auto& ref : direction == 0 ? e.before : e.after) {
-        bool plugin_active = false;
-        const ScheduleEntry* other = find_entry(plugins, ref, plugin_active);
-        if (!plugin_active) continue;
-        if (!other)
-          throw InputError(fmt::format("schedule: {} is to run {} '{}', but the active plugin has no such entry",
-                                       e.full_name(), direction == 0 ? "before" : "after", ref));
+        const ScheduleEntry* other = resolve(plugins, e, ref, direction == 0 ? "before" : "after");
+        if (!other) continue;
         if (other->bin != e.bin)
-          throw InputError(fmt::format("schedule: {} ({}) is ordered against {} in another bin ({})", e.full_name(),
-                                       to_string(e.bin), ref, to_string(other->bin)));
+          throw InputError(fmt::format("schedule: {} ({}) is ordered against {} ({}) in another bin ({})", e.full_name(),
+                                       to_string(e.bin), ref.target, other->full_name(), to_string(other->bin)));
         const std::size_t j = index_of(other);
         if (j == i) throw InputError(fmt::format("schedule: {} is ordered against itself", e.full_name()));
         direction == 0 ? add_edge(i, j) : add_edge(j, i);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "bhnsid/interfaces/lapse.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 
 namespace bhnsid::diagnostics {
@@ -16,9 +17,17 @@ struct Column {
   const double* values;
 };
 
-std::vector<Column> columns(const Grid& grid) {
+std::vector<Column> columns(Grid& grid, const Lapse* lapse) {
   std::vector<Column> out;
-  for (const char* name : {fields::chi, fields::eta, fields::wvec, fields::shift, fields::rho0}) {
+  // The lapse's own unknown (its regular part) and alpha, refreshed from it, beside the others.
+  std::vector<std::string> names{fields::chi};
+  if (lapse) {
+    names.push_back(lapse->regular_part());
+    lapse->update(grid, 0);
+    names.push_back(fields::alpha);
+  }
+  for (const char* name : {fields::wvec, fields::shift, fields::rho0}) names.push_back(name);
+  for (const std::string& name : names) {
     if (!grid.has_field(name)) continue;
     const int id = grid.field_id(name);
     const auto& info = grid.field_info(id);
@@ -31,8 +40,8 @@ std::vector<Column> columns(const Grid& grid) {
 
 }  // namespace
 
-std::string axis_table(const Grid& grid) {
-  const std::vector<Column> cols = columns(grid);
+std::string axis_table(Grid& grid, const Lapse* lapse) {
+  const std::vector<Column> cols = columns(grid, lapse);
   std::string out = "# x";
   for (const Column& c : cols) out += "\t" + c.name;
   out += "\n";
@@ -47,7 +56,7 @@ std::string axis_table(const Grid& grid) {
   return out;
 }
 
-std::map<std::string, double> deviations(const Grid& grid) {
+std::map<std::string, double> deviations(const Grid& grid, const Lapse* lapse) {
   const Level& lv = grid.finest();
   auto largest = [&](const double* v, double offset) {
     double m = 0;
@@ -61,9 +70,10 @@ std::map<std::string, double> deviations(const Grid& grid) {
     return m;
   };
   std::map<std::string, double> out;
-  const std::pair<const char*, const char*> scalars[] = {{fields::chi, "chi_deviation_max"}, {fields::eta, "eta_deviation_max"}};
-  for (const auto& [field, key] : scalars)
-    if (grid.has_field(field)) out[key] = largest(grid.data(grid.field_id(field), 0, 0), 1.0);
+  std::vector<std::string> scalars{fields::chi};
+  if (lapse) scalars.push_back(lapse->regular_part());
+  for (const std::string& field : scalars)
+    if (grid.has_field(field)) out[field + "_deviation_max"] = largest(grid.data(grid.field_id(field), 0, 0), 1.0);
   const std::pair<const char*, const char*> vectors[] = {{fields::wvec, "wvec_max"}, {fields::shift, "shift_max"}};
   for (const auto& [field, key] : vectors)
     if (grid.has_field(field)) {

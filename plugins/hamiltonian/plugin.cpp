@@ -84,11 +84,11 @@ void declare(core::PluginBuilder& b) {
    }).doc("chi = initial_chi on the finest level");
 
   b.schedule(Bin::solve, "puncture_term", [state](Context&) { state->equation->update_puncture(); })
-      .before("multigrid.solve")
+      .before("elliptic_solver.solve")
       .doc("puncture_phi = Mhat_BH/(2 rhat_BH) on every level from the current puncture");
   // The redone UPDATE reads phi = puncture_phi + chi: it must be that of the puncture put back.
   b.schedule(Bin::retreat, "puncture_term_back", [state](Context&) { state->equation->update_puncture(); })
-      .after("puncture.undo_update")
+      .after_if_present("puncture.undo_update")
       .doc("puncture_phi again, from the puncture as RETREAT put it back");
 }
 

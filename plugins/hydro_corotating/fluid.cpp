@@ -8,8 +8,9 @@
 
 namespace bhnsid::hydro_corotating {
 
-void StarFluid::attach(Grid& grid) {
+void StarFluid::attach(Grid& grid, const Lapse& lapse) {
   grid_ = &grid;
+  lapse_ = &lapse;
   const std::vector<core::TensorKind> scalar{core::TensorKind::scalar};
   const std::vector<core::TensorKind> vector{core::TensorKind::vector_x, core::TensorKind::vector_y,
                                              core::TensorKind::vector_z};
@@ -20,7 +21,6 @@ void StarFluid::attach(Grid& grid) {
   trace_ = grid.add_field(fields::matter_trace, scalar);
   momentum_ = grid.add_field(fields::matter_momentum, vector, core::TimeParity::odd);
   chi_ = grid.field_id(fields::chi);
-  eta_ = grid.field_id(fields::eta);
   puncture_phi_ = grid.field_id(fields::puncture_phi);
 }
 
@@ -28,7 +28,7 @@ namespace {
 
 /// The level's arrays the projections read; beta is null without a shift equation (beta = 0).
 struct Inputs {
-  const double *rho0, *press, *enthalpy, *chi, *eta, *puncture_phi;
+  const double *rho0, *press, *enthalpy, *chi, *alpha, *puncture_phi;
   const double* beta[3] = {nullptr, nullptr, nullptr};
 };
 
@@ -46,14 +46,15 @@ void for_points(const Level& lv, const Inputs& in, double omega_hat, Fn&& fn) {
       uz += in.beta[2][p];
     }
     const double phi = in.puncture_phi[p] + in.chi[p];
-    const double w2 = lorentz_squared(phi, in.eta[p], ux, uy, uz);
-    fn(p, ux, uy, uz, w2, in.eta[p] / phi, phi);
+    const double w2 = lorentz_squared(phi, in.alpha[p], ux, uy, uz);
+    fn(p, ux, uy, uz, w2, in.alpha[p], phi);
   });
 }
 
-Inputs inputs(const Grid& grid, int level, int rho0, int press, int enthalpy, int chi, int eta, int puncture_phi) {
+/// Refreshes alpha on `level` from the lapse and gathers the arrays.
+Inputs inputs(Grid& grid, const Lapse& lapse, int level, int rho0, int press, int enthalpy, int chi, int puncture_phi) {
   Inputs in{grid.data(rho0, 0, level), grid.data(press, 0, level), grid.data(enthalpy, 0, level),
-            grid.data(chi, 0, level), grid.data(eta, 0, level), grid.data(puncture_phi, 0, level)};
+            grid.data(chi, 0, level), lapse_on(grid, lapse, level), grid.data(puncture_phi, 0, level)};
   if (grid.has_field(fields::shift)) {
     const int beta = grid.field_id(fields::shift);
     for (int c = 0; c < 3; ++c) in.beta[c] = grid.data(beta, c, level);
@@ -65,7 +66,7 @@ Inputs inputs(const Grid& grid, int level, int rho0, int press, int enthalpy, in
 
 void StarFluid::update_sources(Grid& grid, int level) const {
   const Level& lv = grid.level(level);
-  const Inputs in = inputs(grid, level, rho0_, press_, enthalpy_, chi_, eta_, puncture_phi_);
+  const Inputs in = inputs(grid, *lapse_, level, rho0_, press_, enthalpy_, chi_, puncture_phi_);
   double* energy = grid.data(energy_, 0, level);
   double* trace = grid.data(trace_, 0, level);
   double* j[3] = {grid.data(momentum_, 0, level), grid.data(momentum_, 1, level), grid.data(momentum_, 2, level)};
@@ -88,9 +89,9 @@ void StarFluid::update_sources(Grid& grid, int level) const {
 
 double StarFluid::rest_mass() const {
   if (!grid_) return 0.0;
-  const Grid& grid = *grid_;
+  Grid& grid = *grid_;
   const Level& lv = grid.finest();
-  const Inputs in = inputs(grid, 0, rho0_, press_, enthalpy_, chi_, eta_, puncture_phi_);
+  const Inputs in = inputs(grid, *lapse_, 0, rho0_, press_, enthalpy_, chi_, puncture_phi_);
   // Every stored point is written (integrate reads no ghost), so no zero fill first.
   const auto density = std::make_unique_for_overwrite<double[]>(lv.size);
   double* d = density.get();
@@ -109,7 +110,7 @@ double StarFluid::rest_mass() const {
 std::optional<std::array<double, 3>> StarFluid::superluminal_matter() const {
   if (!grid_) return std::nullopt;
   const Level& lv = grid_->finest();
-  const Inputs in = inputs(*grid_, 0, rho0_, press_, enthalpy_, chi_, eta_, puncture_phi_);
+  const Inputs in = inputs(*grid_, *lapse_, 0, rho0_, press_, enthalpy_, chi_, puncture_phi_);
   // Only asked after a failure: the branch in the loop and the search for the point cost nothing.
   std::ptrdiff_t found = -1;
   auto find = [&](std::ptrdiff_t p, double, double, double, double w2, double, double) {

@@ -1,6 +1,6 @@
 #pragma once
 // The "hydro" service of the corotating star: its constants and the matter projections that the
-// field equations read, formed from the star's rho0, P, h and the current chi, eta, beta with the
+// field equations read, formed from the star's rho0, P, h and the current chi, alpha, beta with the
 // kinematics of corotation (kinematics.hpp).
 #include <array>
 #include <optional>
@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/lapse.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 
 namespace bhnsid::hydro_corotating {
@@ -37,8 +38,8 @@ class StarFluid final : public Fluid {
   /// speed of light in the current fields (W undefined), if there is one: why rest_mass() is NaN.
   std::optional<std::array<double, 3>> superluminal_matter() const;
 
-  /// Registers the fluid fields and the projections on `grid` (every level).
-  void attach(Grid& grid);
+  /// Registers the fluid fields and the projections on `grid` (every level); alpha comes from `lapse`.
+  void attach(Grid& grid, const Lapse& lapse);
 
   StarConstants constants;
   double robin_centre = 0;  ///< fixed at the initial xhat_C: the solver builds its boundary once
@@ -48,7 +49,8 @@ class StarFluid final : public Fluid {
  private:
   Grid* grid_ = nullptr;
   int rho0_ = -1, press_ = -1, enthalpy_ = -1, energy_ = -1, trace_ = -1, momentum_ = -1;
-  int chi_ = -1, eta_ = -1, puncture_phi_ = -1;
+  const Lapse* lapse_ = nullptr;
+  int chi_ = -1, puncture_phi_ = -1;
 };
 
 }  // namespace bhnsid::hydro_corotating

@@ -1,8 +1,8 @@
 #pragma once
 // The kinematics of corotation (physics-notes §1.2, §2.1): the fluid's coordinate velocity is
 // dx^i/dt = Omegahat xi^i, xi = (-yhat, xhat, 0), so that the Eulerian velocity is
-//   v^i = U^i / alpha,  U^i = beta^i + Omegahat xi^i,  alpha = eta / phi,
-//   W^2 = 1 / (1 - phi^4 |v|^2) = 1 / (1 - phi^6 |U|^2 / eta^2),
+//   v^i = U^i / alpha,  U^i = beta^i + Omegahat xi^i,  alpha from the "lapse" service,
+//   W^2 = 1 / (1 - phi^4 |v|^2) = 1 / (1 - phi^4 |U|^2 / alpha^2),
 // and the matter projections the field equations read are
 //   rho_E = rho0 h W^2 - P,  S = rho0 h (W^2 - 1) + 3 P,  j^i = rho0 h W^2 v^i.
 // These are the only formulas an irrotational plugin would replace (its W and v^i come from the
@@ -12,12 +12,13 @@
 
 namespace bhnsid::hydro_corotating {
 
-/// W^2 from phi, eta and U; NaN where the corotating velocity is superluminal (far outside the star,
-/// where it is never used). A constant NaN, not std::nan(""): a library call keeps loops scalar.
-inline double lorentz_squared(double phi, double eta, double ux, double uy, double uz) {
-  const double phi3 = phi * phi * phi;
-  const double v2 = phi3 * phi3 * (ux * ux + uy * uy + uz * uz) / (eta * eta);
-  return v2 < 1.0 ? 1.0 / (1.0 - v2) : std::numeric_limits<double>::quiet_NaN();
+/// W^2 from phi, alpha and U; NaN where the corotating velocity is superluminal (far outside the
+/// star, where it is never used) and where alpha <= 0 (inside the hole's horizon, where no observer
+/// corotates). A constant NaN, not std::nan(""): a library call keeps loops scalar.
+inline double lorentz_squared(double phi, double alpha, double ux, double uy, double uz) {
+  const double phi2 = phi * phi;
+  const double v2 = phi2 * phi2 * (ux * ux + uy * uy + uz * uz) / (alpha * alpha);
+  return v2 < 1.0 && alpha > 0 ? 1.0 / (1.0 - v2) : std::numeric_limits<double>::quiet_NaN();
 }
 
 /// The projections at one point (rho0 > 0).

@@ -4,7 +4,11 @@
 // W = 1 (the corotating velocity is superluminal far out, and means nothing where there is no fluid).
 #include "matter_export.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
+
+#include "bhnsid/core/errors.hpp"
 
 #include "kinematics.hpp"
 
@@ -14,11 +18,11 @@ namespace {
 
 enum class Quantity { rho, press, eps, vel_x, vel_y, vel_z, lorentz };
 
-void fill(Grid& grid, const Eos& eos, const StarFluid& fluid, Quantity q, double* out) {
+void fill(Grid& grid, const Eos& eos, const Lapse& lapse, const StarFluid& fluid, Quantity q, double* out) {
   const Level& lv = grid.finest();
   const double* rho0 = grid.data(grid.field_id(fields::rho0), 0, 0);
   const double* chi = grid.data(grid.field_id(fields::chi), 0, 0);
-  const double* eta = grid.data(grid.field_id(fields::eta), 0, 0);
+  const double* lapse_alpha = lapse_on(grid, lapse, 0);
   const double* pphi = grid.data(grid.field_id(fields::puncture_phi), 0, 0);
   const double* beta[3] = {nullptr, nullptr, nullptr};
   if (grid.has_field(fields::shift))
@@ -36,7 +40,12 @@ void fill(Grid& grid, const Eos& eos, const StarFluid& fluid, Quantity q, double
         // U = beta + Omegahat xi, xi = (-yhat, xhat, 0): the same in hatted and physical units.
         double u[3] = {-w * lv.y(j), w * lv.x(i), 0.0};
         for (int c = 0; c < 3; ++c) u[c] += beta[c] ? beta[c][p] : 0.0;
-        const double phi = pphi[p] + chi[p], alpha = eta[p] / phi;
+        const double phi = pphi[p] + chi[p], alpha = lapse_alpha[p];
+        // Matter where no observer is at rest (alpha <= 0, inside a horizon) has no Eulerian velocity.
+        if (!(alpha > 0))
+          throw core::RunFailure(fmt::format("hydro_corotating: matter (rho0 = {:.6g}) at xhat = ({:.6g}, {:.6g}, {:.6g}) "
+                                             "where the lapse alpha = {:.6g} is not positive: no velocity to write",
+                                             r, lv.x(i), lv.y(j), lv.z(k), alpha));
         switch (q) {
           case Quantity::rho: out[p] = r; break;
           case Quantity::press: out[p] = eos.pressure(r); break;
@@ -44,14 +53,14 @@ void fill(Grid& grid, const Eos& eos, const StarFluid& fluid, Quantity q, double
           case Quantity::vel_x: out[p] = u[0] / alpha; break;
           case Quantity::vel_y: out[p] = u[1] / alpha; break;
           case Quantity::vel_z: out[p] = u[2] / alpha; break;
-          case Quantity::lorentz: out[p] = std::sqrt(lorentz_squared(phi, eta[p], u[0], u[1], u[2])); break;
+          case Quantity::lorentz: out[p] = std::sqrt(lorentz_squared(phi, alpha, u[0], u[1], u[2])); break;
         }
       }
 }
 
 }  // namespace
 
-std::shared_ptr<FieldExport> matter_export(Grid& grid, const Eos& eos, const StarFluid& fluid) {
+std::shared_ptr<FieldExport> matter_export(Grid& grid, const Eos& eos, const Lapse& lapse, const StarFluid& fluid) {
   auto out = std::make_shared<FieldExportList>();
   struct Entry {
     const char* name;
@@ -72,9 +81,10 @@ std::shared_ptr<FieldExport> matter_export(Grid& grid, const Eos& eos, const Sta
   Grid* g = &grid;
   const Eos* e = &eos;
   const StarFluid* f = &fluid;
+  const Lapse* a = &lapse;
   for (const Entry& entry : entries)
     out->add({"HydroBase", entry.name, entry.units, Parity{entry.z_parity, 1}, entry.doc},
-             [g, e, f, q = entry.q](double* values) { fill(*g, *e, *f, q, values); });
+             [g, e, a, f, q = entry.q](double* values) { fill(*g, *e, *a, *f, q, values); });
   return out;
 }
 

@@ -8,6 +8,6 @@
 
 namespace bhnsid::hydro_corotating {
 
-std::shared_ptr<FieldExport> matter_export(Grid& grid, const Eos& eos, const StarFluid& fluid);
+std::shared_ptr<FieldExport> matter_export(Grid& grid, const Eos& eos, const Lapse& lapse, const StarFluid& fluid);
 
 }  // namespace bhnsid::hydro_corotating

@@ -10,6 +10,7 @@
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/core/plugin.hpp"
 #include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/lapse.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "matter_export.hpp"
 #include "star.hpp"
@@ -50,7 +51,7 @@ void declare(core::PluginBuilder& b) {
   b.require("eos");
   b.require("tov_family");
   b.require("equation.hamiltonian");
-  b.require("equation.lapse");
+  b.require("lapse");
   b.implements("hydro");
   b.implements("export.hydro_corotating");
   b.memory([](const Context& ctx, core::MemoryEstimate& m) {
@@ -96,23 +97,23 @@ void declare(core::PluginBuilder& b) {
      auto& grid = ctx.services().get<Grid>("grid");
      const auto& eos = ctx.services().get<Eos>("eos");
      const auto& family = ctx.services().get<TovFamily>("tov_family");
-     state->star = std::make_unique<Star>(grid, eos, family, settings_from(ctx.params()), state->fluid,
+     state->star = std::make_unique<Star>(grid, eos, family, ctx.services().get<Lapse>("lapse"), settings_from(ctx.params()), state->fluid,
                                          ctx.services().find<Puncture>("puncture"));
-     ctx.publish<FieldExport>("export.hydro_corotating", matter_export(grid, eos, *state->fluid));
+     ctx.publish<FieldExport>("export.hydro_corotating", matter_export(grid, eos, ctx.services().get<Lapse>("lapse"), *state->fluid));
      const StarConstants& c = state->fluid->constants;
      ctx.log().info("static star, {}: rho_max = {}, xhat_C = {}, Rhat = {}, initial sigma = {:.9g}, C_B = {:.9g}",
                     eos.describe(), ctx.params().real("rho_max"), c.x_c, state->star->rhat_star(), c.sigma, c.bernoulli);
    })
-      .after("hamiltonian.setup")
+      .after("equation.hamiltonian.setup")
       .after("lapse.setup")
-      .after("tov.publish_family")
+      .after("tov_family.publish_family")
       .doc("TOV star of rho_max, initial sigma and C_B, fluid fields; publish the export of rho, press, eps, vel, "
            "w_lorentz");
 
   b.schedule(Bin::initial, "initial_data", [state](Context&) { state->star->set_initial(); })
-      .after("hamiltonian.initial_data")
+      .after("equation.hamiltonian.initial_data")
       .after("lapse.initial_data")
-      .doc("TOV initial guess: rho0, chi = psi_TOV, eta = alpha_TOV psi_TOV about xhat_C");
+      .doc("TOV initial guess: rho0, chi = psi_TOV, the lapse's regular part = alpha_TOV psi_TOV about xhat_C");
 
   b.checkpoint([state](Context&, core::CheckpointWriter& out) { state->star->save(out); },
                [state](Context&, const core::CheckpointReader& in) { state->star->restore(in); });

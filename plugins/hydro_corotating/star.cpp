@@ -13,15 +13,15 @@ namespace bhnsid::hydro_corotating {
 
 using core::RunFailure;
 
-Star::Star(Grid& grid, const Eos& eos, const TovFamily& family, StarSettings settings, std::shared_ptr<StarFluid> fluid,
-           const Puncture* hole)
-    : grid_(grid), eos_(eos), family_(family), settings_(settings), fluid_(std::move(fluid)), hole_(hole) {
-  fluid_->attach(grid);
+Star::Star(Grid& grid, const Eos& eos, const TovFamily& family, const Lapse& lapse, StarSettings settings,
+           std::shared_ptr<StarFluid> fluid, const Puncture* hole)
+    : grid_(grid), eos_(eos), family_(family), lapse_(lapse), settings_(settings), fluid_(std::move(fluid)), hole_(hole) {
+  fluid_->attach(grid, lapse);
   rho0_ = grid.field_id(fields::rho0);
   press_ = grid.field_id(fields::press);
   enthalpy_ = grid.field_id(fields::enthalpy);
   chi_ = grid.field_id(fields::chi);
-  eta_ = grid.field_id(fields::eta);
+  lapse_regular_ = grid.field_id(lapse.regular_part());
   puncture_phi_ = grid.field_id(fields::puncture_phi);
   tov_ = family.star(settings.rho_max);
   fluid_->initial_mass = tov_.rest_mass;
@@ -66,7 +66,8 @@ void Star::set_initial() {
   const double scale = tov_.radius_isotropic / rhat_star(), x_c = fluid_->constants.x_c;
   double* rho0 = grid_.data(rho0_, 0, 0);
   double* chi = grid_.data(chi_, 0, 0);
-  double* eta = grid_.data(eta_, 0, 0);
+  // The lapse's regular part is alpha phi without the puncture's term: alpha_TOV psi_TOV in the star.
+  double* regular = grid_.data(lapse_regular_, 0, 0);
   for (int k = 0; k < lv.nz; ++k)
     for (int j = 0; j < lv.ny; ++j)
       for (int i = 0; i < lv.nx; ++i) {
@@ -74,9 +75,9 @@ void Star::set_initial() {
         const TovPoint t = tov_at(tov_, scale * std::hypot(lv.x(i) - x_c, lv.y(j), lv.z(k)));
         rho0[p] = t.rho0;
         chi[p] = t.psi;
-        eta[p] = t.alpha * t.psi;
+        regular[p] = t.alpha * t.psi;
       }
-  for (int f : {chi_, eta_}) grid_.fill_ghosts(f, 0);
+  for (int f : {chi_, lapse_regular_}) grid_.fill_ghosts(f, 0);
   fill_thermodynamics();
 }
 
@@ -97,21 +98,10 @@ void Star::fill_thermodynamics() {
 
 namespace {
 
-/// alpha = eta / phi on the finest level, ghosts filled, for interpolation.
-std::vector<double> lapse_field(Grid& grid, int chi, int eta, int puncture_phi) {
-  const Level& lv = grid.finest();
-  std::vector<double> alpha(lv.size, 1.0);
-  const double* c = grid.data(chi, 0, 0);
-  const double* e = grid.data(eta, 0, 0);
-  const double* b = grid.data(puncture_phi, 0, 0);
-  for (int k = 0; k < lv.nz; ++k)
-    for (int j = 0; j < lv.ny; ++j)
-      for (int i = 0; i < lv.nx; ++i) {
-        const std::ptrdiff_t p = lv.at(i, j, k);
-        alpha[p] = e[p] / (b[p] + c[p]);
-      }
-  grid.fill_ghosts(alpha.data(), Parity{}, 0);
-  return alpha;
+/// alpha on the finest level from the lapse, ghosts filled, for interpolation.
+std::vector<double> lapse_field(Grid& grid, const Lapse& lapse) {
+  const double* alpha = lapse_on(grid, lapse, 0);
+  return std::vector<double>(alpha, alpha + grid.finest().size);
 }
 
 /// phi = puncture_phi + chi on the finest level, ghosts filled, for interpolation.
@@ -155,7 +145,7 @@ StepReport Star::step(double fraction) {
     return report;
   }
   // The fields of the last solve, read by the Newton solve and by the reset (unchanged between them).
-  const std::vector<double> alpha = lapse_field(grid_, chi_, eta_, puncture_phi_);
+  const std::vector<double> alpha = lapse_field(grid_, lapse_);
   const std::vector<double> phi = conformal_factor_field(grid_, chi_, puncture_phi_);
   const double rhat = rhat_star(), h_max = eos_.enthalpy(settings_.rho_max);
   auto at = [&](const std::vector<double>& f, double x) { return grid_.interpolate(f.data(), Parity{}, 0, {x, 0, 0}); };
@@ -367,17 +357,18 @@ double Star::axis_maximum() const {
 std::string Star::axis_table() const {
   const auto rho0 = grid_.line_x(grid_.data(rho0_, 0, 0), 0);
   const auto chi = grid_.line_x(grid_.data(chi_, 0, 0), 0);
-  const auto eta = grid_.line_x(grid_.data(eta_, 0, 0), 0);
+  const auto regular = grid_.line_x(grid_.data(lapse_regular_, 0, 0), 0);
+  const auto alpha = grid_.line_x(lapse_on(grid_, lapse_, 0), 0);
   const auto phib = grid_.line_x(grid_.data(puncture_phi_, 0, 0), 0);
   const StarConstants& c = fluid_->constants;
   std::string out = fmt::format("# sigma = {:.12g}, C_B = {:.12g}, xhat_C = {:.12g}; TOV columns at r_iso = sigma |xhat - xhat_C|\n"
-                                "# x\trho0\tchi\teta\talpha\trho0_tov\tpsi_tov\talpha_tov\n",
+                                "# x\trho0\tchi\tlapse_regular\talpha\trho0_tov\tpsi_tov\talpha_tov\n",
                                 c.sigma, c.bernoulli, c.x_c);
   for (std::size_t i = 0; i < rho0.size(); ++i) {
-    const double x = rho0[i][0], phi = phib[i][1] + chi[i][1];
+    const double x = rho0[i][0];
     const TovPoint t = tov_at(tov_, c.sigma * std::fabs(x - c.x_c));
     out += fmt::format("{:.10g}\t{:.12e}\t{:.12e}\t{:.12e}\t{:.12e}\t{:.12e}\t{:.12e}\t{:.12e}\n", x, rho0[i][1], chi[i][1],
-                       eta[i][1], eta[i][1] / phi, t.rho0, t.psi, t.alpha);
+                       regular[i][1], alpha[i][1], t.rho0, t.psi, t.alpha);
   }
   return out;
 }

@@ -47,10 +47,10 @@ class Star {
  public:
   /// Fills `fluid` (published earlier, so the equations could find it) with the initial constants;
   /// `hole` is the black hole of a binary, or null.
-  Star(Grid& grid, const Eos& eos, const TovFamily& family, StarSettings settings, std::shared_ptr<StarFluid> fluid,
+  Star(Grid& grid, const Eos& eos, const TovFamily& family, const Lapse& lapse, StarSettings settings, std::shared_ptr<StarFluid> fluid,
        const Puncture* hole);
 
-  /// TOV initial guess (physics-notes §4.7): rho0, chi = psi_TOV, eta = alpha_TOV psi_TOV of the TOV
+  /// TOV initial guess (physics-notes §4.7): rho0, chi = psi_TOV, the lapse's regular part = alpha_TOV psi_TOV of the TOV
   /// star of rho_max placed on hatted radius Rhat about xhat_C; with a hole, sigma_0 = R_iso/(Rhat
   /// phi_ext^2), phi_ext = 1 + delta (the hole shrinks the star; R_iso/Rhat lies above the fold).
   void set_initial();
@@ -74,7 +74,7 @@ class Star {
 
   double rhat_star() const { return 0.5 * (1.0 - settings_.x_a); }
   const std::vector<StepReport>& history() const { return history_; }
-  /// star_axis.tsv: x, rho0, chi, eta, alpha and the TOV values at the same physical radius.
+  /// star_axis.tsv: x, rho0, chi, the lapse's regular part, alpha and the TOV values at the same physical radius.
   std::string axis_table() const;
 
  private:
@@ -96,6 +96,7 @@ class Star {
   Grid& grid_;
   const Eos& eos_;
   const TovFamily& family_;
+  const Lapse& lapse_;
   StarSettings settings_;
   TovStar tov_;
   std::shared_ptr<StarFluid> fluid_;
@@ -108,7 +109,7 @@ class Star {
   double delta_weight_ = 1;
   double undone_rest_mass_ = 0;  ///< M0 before the step retreat() undid (0: none), for the next step
   std::vector<StepReport> history_;
-  int rho0_, press_, enthalpy_, chi_, eta_, puncture_phi_;
+  int rho0_, press_, enthalpy_, chi_, lapse_regular_, puncture_phi_;
 };
 
 }  // namespace bhnsid::hydro_corotating

@@ -52,6 +52,13 @@ void write(Context& ctx) {
   DataFile file;
   try {
     file = write_data_file(partial.string(), grid, exports, record, eos, sigma, settings);
+  } catch (const core::RunFailure& e) {
+    ctx.abandon_output(data_name);
+    // After a failed loop the fields may hold what the failed solve left (NaN past a fold): the run
+    // has named its failure once already, so the missing file is a warning, not a second failure.
+    if (record.failure.empty()) throw;
+    ctx.log().warn("{} (the run failed before: {})", e.what(), record.failure);
+    return;
   } catch (...) {
     ctx.abandon_output(data_name);
     throw;

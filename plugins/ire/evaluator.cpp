@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 
+#include "bhnsid/interfaces/lapse.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "box.hpp"
 
@@ -116,7 +117,7 @@ void for_points(const Box& b, int margin, Fn&& fn) {
 }
 
 struct Geometry {
-  Field chi, eta;  // the solution's regular part of phi and eta = alpha phi, at the outer points
+  Field chi, weight;  // the solution's regular part of phi and the momentum ansatz's weight q, at the outer points
   Field alpha, rho_e, trace_s, lorentz, enthalpy, rho0;
   std::array<Field, 3> beta_up, beta_down, j_up, dalpha;
   std::array<Field, 6> gamma, k_down, k_up, sigma;
@@ -135,12 +136,13 @@ void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, const N
   // points where the residuals are evaluated (inner points suffice).
   const PointSet &set = need.outer, &inner = need.inner;
   g.chi = copy(grid, set, fields::chi, 0, 0);
-  g.eta = copy(grid, set, fields::eta, 0, 0);
+  g.weight = copy(grid, set, fields::ansatz_weight, 0, 0);
   const Field& chi = g.chi;
-  const Field& eta = g.eta;
   for (int a = 0; a < 3; ++a) g.beta_up[static_cast<std::size_t>(a)] = copy(grid, set, fields::shift, a, zcount(a));
   phi = make_compact(set, 0, false);
-  g.alpha = make_compact(set, 0, false);
+  // The lapse's alpha as its plugin forms it (refreshed by the caller): which unknown it solves for
+  // is its business; the IRE checks the equations alpha must obey.
+  g.alpha = copy(grid, set, fields::alpha, 0, 0);
   for (int p = 0; p < 6; ++p) g.gamma[static_cast<std::size_t>(p)] = make_compact(set, (p == 2 || p == 4) ? 1 : 0);
   for (int a = 0; a < 3; ++a) g.beta_down[static_cast<std::size_t>(a)] = make_compact(set, zcount(a), false);
   g.lorentz = make_compact(inner, 0);
@@ -169,8 +171,7 @@ void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, const N
       ph += in.bare_mass / (2.0 * std::sqrt(dx * dx + dy * dy + dz * dz));
     }
     phi.v[p] = ph;
-    const double al = eta.v[p] / ph, psi4 = ph * ph * ph * ph;
-    g.alpha.v[p] = al;
+    const double psi4 = ph * ph * ph * ph;
     g.gamma[0].v[p] = g.gamma[3].v[p] = g.gamma[5].v[p] = psi4;
     for (int a = 0; a < 3; ++a) g.beta_down[static_cast<std::size_t>(a)].v[p] = psi4 * g.beta_up[static_cast<std::size_t>(a)].v[p];
     if (inner.slot[at] < 0) return;
@@ -183,11 +184,11 @@ void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, const N
   });
 }
 
-// K_ij = phi^-2 Ahat_ij, Ahat = Bowen-York + Zhat, Zhat^ij = chi^7/(2 eta) (LW)^ij with the box's
+// K_ij = phi^-2 Ahat_ij, Ahat = Bowen-York + Zhat, Zhat^ij = chi^7/(2 q) (LW)^ij with the box's
 // own D0 of W (margin 1).
 void fill_extrinsic(const Grid& grid, const Box& b, const Inputs& in, const Field& phi, const Needed& need, Geometry& g) {
   const Field& chi = g.chi;
-  const Field& eta = g.eta;
+  const Field& weight = g.weight;
   std::array<Field, 3> w;
   for (int a = 0; a < 3; ++a) w[static_cast<std::size_t>(a)] = copy(grid, need.outer, fields::wvec, a, zcount(a));
   for (int a = 0; a < 3; ++a)
@@ -200,7 +201,8 @@ void fill_extrinsic(const Grid& grid, const Box& b, const Inputs& in, const Fiel
       for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) dw[a][c] = d0(b, w[static_cast<std::size_t>(c)], a, i, j, k);
     const double div = dw[0][0] + dw[1][1] + dw[2][2];
-    const double factor = std::pow(chi.v[p], 7) / (2.0 * eta.v[p]);
+    // q > 0 wherever the momentum equation is solved (its plugin checks); without W there is no Zhat.
+    const double factor = has_w ? std::pow(chi.v[p], 7) / (2.0 * weight.v[p]) : 0.0;
     double n[3] = {0, 0, 0}, r = 1, pn = 0;
     if (in.puncture) {
       const double d[3] = {b.x0 + b.dx * i - in.position[0], b.y0 + b.dx * j - in.position[1],

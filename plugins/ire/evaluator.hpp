@@ -1,6 +1,6 @@
 #pragma once
-// The independent residual evaluator (physics-notes §7): from a solution (chi, eta, beta, W, the
-// puncture, the fluid) it builds the physical fields gamma_ij, K_ij, alpha, beta^i and the matter in
+// The independent residual evaluator (physics-notes §7): from a solution (chi, alpha, beta, W and
+// the ansatz weight q, the puncture, the fluid) it builds the physical fields gamma_ij, K_ij, alpha, beta^i and the matter in
 // hatted coordinates and evaluates the covariant equations with generic Christoffel symbols, Ricci
 // tensor and covariant derivatives, by centred differences of its own: first derivatives D0, second
 // derivatives D0(D0 u) (the solver uses D+D-). It shares no code with the equation plugins;

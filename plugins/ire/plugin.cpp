@@ -12,6 +12,7 @@
 #include "bhnsid/core/plugin.hpp"
 #include "bhnsid/core/residual_report.hpp"
 #include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/lapse.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "evaluator.hpp"
 
@@ -84,6 +85,7 @@ void declare(core::PluginBuilder& b) {
      const auto* fluid = ctx.services().find<Fluid>("hydro");
      // The projections of the solution itself (the last sweep's may lag it by one sweep).
      if (fluid && grid.has_field(fields::matter_energy)) fluid->update_sources(grid, 0);
+     if (const auto* lapse = ctx.services().find<Lapse>("lapse")) lapse->update(grid, 0);
      const auto* puncture = ctx.services().find<Puncture>("puncture");
      Inputs in;
      in.sigma = fluid ? fluid->sigma() : 1.0;

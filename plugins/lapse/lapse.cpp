@@ -9,6 +9,7 @@ namespace bhnsid::lapse {
 LapseEquation::LapseEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, double matter_scale)
     : grid_(grid), fluid_(fluid), puncture_(puncture), matter_scale_(matter_scale) {
   eta_ = grid.add_field(fields::eta, {core::TensorKind::scalar});
+  grid.add_field(fields::alpha, {core::TensorKind::scalar});
   for (const char* name : {fields::chi, fields::puncture_phi, fields::aa})
     if (!grid.has_field(name))
       throw core::RunFailure(fmt::format("lapse: the field {} is missing; the lapse needs the hamiltonian plugin", name));
@@ -56,6 +57,16 @@ void LapseEquation::relax(const RelaxArgs& args) const {
     stencil::scalar_relax_any(grid_.level(l), eta, rhs, args.fixed, args.omega, mirror, LapseTerm<true>{s});
   else
     stencil::scalar_relax_any(grid_.level(l), eta, rhs, args.fixed, args.omega, mirror, LapseTerm<false>{s});
+}
+
+void EtaLapse::update(Grid& grid, int level) const {
+  const int alpha_id = grid.field_id(fields::alpha);
+  double* alpha = grid.data(alpha_id, 0, level);
+  const double* eta = grid.data(grid.field_id(fields::eta), 0, level);
+  const double* chi = grid.data(grid.field_id(fields::chi), 0, level);
+  const double* pphi = grid.data(grid.field_id(fields::puncture_phi), 0, level);
+  for_stored_points(grid.level(level), [&](std::ptrdiff_t p) { alpha[p] = eta[p] / (pphi[p] + chi[p]); });
+  grid.fill_ghosts(alpha_id, level);
 }
 
 }  // namespace bhnsid::lapse

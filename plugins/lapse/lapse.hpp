@@ -6,6 +6,7 @@
 
 #include "bhnsid/interfaces/elliptic.hpp"
 #include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/lapse.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "kernels.hpp"
 
@@ -13,7 +14,7 @@ namespace bhnsid::lapse {
 
 class LapseEquation final : public EllipticEquation {
  public:
-  /// Registers eta; reads chi, puncture_phi and aa_hat, which the hamiltonian plugin registers.
+  /// Registers eta and alpha; reads chi, puncture_phi and aa_hat, which the hamiltonian plugin registers.
   LapseEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, double matter_scale);
 
   std::string name() const override { return "lapse"; }
@@ -31,6 +32,14 @@ class LapseEquation final : public EllipticEquation {
   const Puncture* puncture_;
   double matter_scale_;
   int eta_;
+};
+
+/// The "lapse" service: alpha = eta / phi, phi = Mhat_BH/(2 rhat_BH) + chi. eta is regular and
+/// positive, so alpha -> 0 at the puncture and is positive everywhere else.
+class EtaLapse final : public Lapse {
+ public:
+  void update(Grid& grid, int level) const override;
+  std::string regular_part() const override { return fields::eta; }
 };
 
 }  // namespace bhnsid::lapse

@@ -8,6 +8,7 @@
 #include "bhnsid/interfaces/elliptic.hpp"
 #include "bhnsid/interfaces/export.hpp"
 #include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/lapse.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "lapse.hpp"
 
@@ -21,12 +22,14 @@ void declare(core::PluginBuilder& b) {
   b.require("grid");
   b.require("elliptic_solver");
   b.require("equation.hamiltonian");
+  b.implements("lapse");
   b.implements("equation.lapse");
   b.implements("export.lapse");
   b.memory([](const Context& ctx, core::MemoryEstimate& m) {
     m.count(memory_unknown_components, 1);
     if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
       layout->estimate_field(m, ctx.plugin(), fields::eta, 1);
+      layout->estimate_field(m, ctx.plugin(), fields::alpha, 1);
     }
   });
 
@@ -42,19 +45,19 @@ void declare(core::PluginBuilder& b) {
      const auto* puncture = ctx.services().find<Puncture>("puncture");
      ctx.publish<EllipticEquation>("equation.lapse",
                                    std::make_shared<LapseEquation>(grid, fluid, puncture, ctx.params().real("test_matter_scale")));
+     auto lapse = std::make_shared<EtaLapse>();
+     ctx.publish<Lapse>("lapse", lapse);
      auto out = std::make_shared<FieldExportList>();
      Grid* g = &grid;
      out->add({"ADMBase", "alp", "1", Parity{}, "the lapse alpha = eta / phi, phi = Mhat_BH/(2 rhat_BH) + chi"},
-              [g](double* alp) {
-                const double* eta = g->data(g->field_id(fields::eta), 0, 0);
-                const double* chi = g->data(g->field_id(fields::chi), 0, 0);
-                const double* pphi = g->data(g->field_id(fields::puncture_phi), 0, 0);
-                for_stored_points(g->finest(), [&](std::ptrdiff_t p) { alp[p] = eta[p] / (pphi[p] + chi[p]); });
+              [g, lapse](double* alp) {
+                const double* alpha = lapse_on(*g, *lapse, 0);
+                for_stored_points(g->finest(), [&](std::ptrdiff_t p) { alp[p] = alpha[p]; });
               });
      ctx.publish<FieldExport>("export.lapse", out);
    })
-      .after("hamiltonian.setup")
-      .doc("register eta, publish the equation and the export of alp");
+      .after("equation.hamiltonian.setup")
+      .doc("register eta and alpha, publish the equation, the lapse and the export of alp");
 
   b.schedule(Bin::initial, "initial_data", [](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");

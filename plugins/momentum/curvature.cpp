@@ -46,10 +46,10 @@ inline double tapped(const double* f, const Taps& t, std::ptrdiff_t i) {
   return t.coef[0] * f[t.row[0] + i] + t.coef[1] * f[t.row[1] + i] + t.coef[2] * f[t.row[2] + i];
 }
 
-/// One row of level l: W, chi and eta at the row's first sample in the finest level's arrays, the
+/// One row of level l: W, chi and the ansatz weight q at the row's first sample in the finest level's arrays, the
 /// taps of the y and z derivatives per component, the outputs at the row's first point.
 struct CurvatureRow {
-  const double *w0, *w1, *w2, *chi, *eta;
+  const double *w0, *w1, *w2, *chi, *weight;
   Taps ty[3], tz[3];
   double *a0, *a1, *a2, *a3, *a4, *a5, *aa;
   double inv_2h;
@@ -73,7 +73,7 @@ template <bool BowenYork>
                                     {dx1, tapped(r.w1, r.ty[1], fi), tapped(r.w1, r.tz[1], fi)},
                                     {dx2, tapped(r.w2, r.ty[2], fi), tapped(r.w2, r.tz[2], fi)});
   const double c0 = r.chi[fi], c2 = c0 * c0;
-  const double factor = c2 * c2 * c2 * c0 / (2.0 * r.eta[fi]);  // chi^7 / (2 eta)
+  const double factor = c2 * c2 * c2 * c0 / (2.0 * r.weight[fi]);  // chi^7 / (2 q)
   const std::array<double, 6> z = {factor * lw.xx, factor * lw.xy, factor * lw.xz,
                                    factor * lw.yy, factor * lw.yz, factor * lw.zz};
   std::array<double, 6> t = z;
@@ -143,7 +143,7 @@ CurvatureChange fill_curvature(Grid& grid, const CurvatureFields& fields, const 
     parity_z[c] = grid.field_info(fields.wvec).parity[static_cast<std::size_t>(c)].z;
   }
   const double* chi = grid.data(fields.chi, 0, 0);
-  const double* eta = grid.data(fields.eta, 0, 0);
+  const double* weight = grid.data(fields.weight, 0, 0);
   std::array<double, 3> mom{}, x_bh{};
   if (puncture) {
     mom = puncture->momentum();
@@ -170,7 +170,7 @@ CurvatureChange fill_curvature(Grid& grid, const CurvatureFields& fields, const 
         for (int j = 0; j < lv.ny; ++j) {
           const std::ptrdiff_t row = sample.row(j, k), p = lv.at(0, j, k);
           CurvatureRow r{};
-          r.w0 = w[0] + row, r.w1 = w[1] + row, r.w2 = w[2] + row, r.chi = chi + row, r.eta = eta + row;
+          r.w0 = w[0] + row, r.w1 = w[1] + row, r.w2 = w[2] + row, r.chi = chi + row, r.weight = weight + row;
           for (int c = 0; c < 3; ++c) {
             r.ty[c] = taps(sample, lv, j, k, 1, parity_z[c], inv_2h, row);
             r.tz[c] = taps(sample, lv, j, k, 2, parity_z[c], inv_2h, row);

@@ -8,9 +8,9 @@
 
 namespace bhnsid::momentum {
 
-/// Ids of the fields the fill reads (wvec, chi, eta) and writes (ahat, aa).
+/// Ids of the fields the fill reads (wvec, chi, the ansatz weight q) and writes (ahat, aa).
 struct CurvatureFields {
-  int wvec = -1, chi = -1, eta = -1;
+  int wvec = -1, chi = -1, weight = -1;
   int ahat = -1, aa = -1;
 };
 
@@ -22,8 +22,8 @@ struct CurvatureChange {
 };
 
 /// On every level l: ahat = bowen_york(P, xhat_BH, x) (zero without a puncture or with P = 0) +
-/// chi^7/(2 eta) (LW)^ij, and aa = squared_norm(ahat), ghosts filled by parity. Zhat is computed
-/// from the FINEST level's W, chi and eta sampled at level l's points (what the multigrid's injection
+/// chi^7/(2 q) (LW)^ij, and aa = squared_norm(ahat), ghosts filled by parity. Zhat is computed
+/// from the FINEST level's W, chi and q sampled at level l's points (what the multigrid's injection
 /// puts on the coarse levels at the start of a solve; the coarse arrays themselves may hold zeros
 /// before the first solve), differenced at level l's spacing: centred in the interior and across
 /// the z = 0 plane (mirror image by the component's parity), one-sided second order

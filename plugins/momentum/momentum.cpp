@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "bhnsid/core/errors.hpp"
 
 namespace bhnsid::momentum {
@@ -24,23 +26,34 @@ void with_lower(const Sources& s, bool matter, Fn&& fn) {
     fn(MomentumLower<false>{s});
 }
 
-int required_field(const Grid& grid, const char* name) {
+int required_field(const Grid& grid, const std::string& name, const char* owner) {
   if (!grid.has_field(name))
     throw core::RunFailure(fmt::format(
-        "momentum: the field '{}' is missing at SETUP; the momentum constraint reads chi, eta and puncture_phi, "
-        "registered by the hamiltonian plugin (chi, puncture_phi) and the lapse plugin (eta): add them to plugins "
-        "(or, in a test, a plugin that registers '{}' before momentum.setup)",
-        name, name));
+        "momentum: the field '{}' is missing at SETUP; the momentum constraint reads it, registered by {}: add that "
+        "plugin to plugins (or, in a test, a plugin that registers '{}' before momentum.setup)",
+        name, owner, name));
   return grid.field_id(name);
 }
 
 }  // namespace
 
-MomentumEquation::MomentumEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, double source_scale)
-    : grid_(grid), fluid_(fluid), puncture_(puncture), source_scale_(source_scale) {
-  chi_ = required_field(grid, fields::chi);
-  eta_ = required_field(grid, fields::eta);
-  puncture_phi_ = required_field(grid, fields::puncture_phi);
+MomentumEquation::MomentumEquation(Grid& grid, const Lapse* lapse, Weight weight, const Fluid* fluid,
+                                   const Puncture* puncture, double source_scale)
+    : grid_(grid), fluid_(fluid), puncture_(puncture), source_scale_(source_scale), weight_kind_(weight) {
+  chi_ = required_field(grid, fields::chi, "the hamiltonian plugin");
+  puncture_phi_ = required_field(grid, fields::puncture_phi, "the hamiltonian plugin");
+  weight_ = grid.add_field(fields::ansatz_weight, scalar);
+  if (weight == Weight::lapse) {
+    if (!lapse)
+      throw core::InputError("momentum.weight = lapse: no plugin implements 'lapse' (add one to plugins:, or set "
+                             "momentum.weight: unit)");
+    weight_source_ = required_field(grid, lapse->regular_part(), "the plugin implementing 'lapse' (its regular part)");
+  } else {
+    for (int l = 0; l < grid.num_levels(); ++l) {
+      double* q = grid.data(weight_, 0, l);
+      std::fill(q, q + grid.level(l).size, 1.0);
+    }
+  }
   w_ = grid.add_field(fields::wvec, vector, core::TimeParity::odd);
   ahat_ = grid.add_field(fields::ahat, symmetric, core::TimeParity::odd);
   // Registered by the hamiltonian plugin when it is active; the same kinds return that field.
@@ -56,17 +69,24 @@ OuterBoundary MomentumEquation::boundary() const {
 }
 
 std::vector<std::string> MomentumEquation::coefficients() const {
-  // chi and eta are the hamiltonian's and the lapse's unknowns (the solver keeps them on every level)
+  // chi and the lapse's regular part are unknowns (the solver keeps them on every level)
   // and puncture_phi is analytic on every level, so only the hydro plugin's inputs are restricted.
   if (!fluid_) return {};
   return fluid_->source_inputs();
 }
 
+void MomentumEquation::refresh_weight(int level) const {
+  if (weight_kind_ != Weight::lapse) return;
+  const double* from = grid_.data(weight_source_, 0, level);
+  std::copy(from, from + grid_.level(level).size, grid_.data(weight_, 0, level));
+}
+
 Sources MomentumEquation::sources(int level) const {
   const Level& lv = grid_.level(level);
+  refresh_weight(level);
   Sources s;
   s.chi = grid_.data(chi_, 0, level);
-  s.eta = grid_.data(eta_, 0, level);
+  s.weight = grid_.data(weight_, 0, level);
   s.puncture_phi = grid_.data(puncture_phi_, 0, level);
   s.sy = lv.sy;
   s.sz = lv.sz;
@@ -96,7 +116,18 @@ void MomentumEquation::relax(const RelaxArgs& args) const {
 }
 
 CurvatureChange MomentumEquation::fill_curvature() const {
-  return momentum::fill_curvature(grid_, CurvatureFields{w_, chi_, eta_, ahat_, aa_}, puncture_);
+  refresh_weight(0);
+  const Level& lv = grid_.finest();
+  const double* q = grid_.data(weight_, 0, 0);
+  for (int k = 0; k < lv.nz; ++k)
+    for (int j = 0; j < lv.ny; ++j)
+      for (int i = 0; i < lv.nx; ++i)
+        if (!(q[lv.at(i, j, k)] > 0))
+          throw core::RunFailure(fmt::format(
+              "momentum: the ansatz weight q = {:.6g} at xhat = ({:.6g}, {:.6g}, {:.6g}) is not positive (momentum.weight "
+              "= lapse takes the lapse's regular part; momentum.weight: unit takes q = 1)",
+              q[lv.at(i, j, k)], lv.x(i), lv.y(j), lv.z(k)));
+  return momentum::fill_curvature(grid_, CurvatureFields{w_, chi_, weight_, ahat_, aa_}, puncture_);
 }
 
 }  // namespace bhnsid::momentum

@@ -10,6 +10,7 @@
 #include "bhnsid/interfaces/elliptic.hpp"
 #include "bhnsid/interfaces/export.hpp"
 #include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/lapse.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "momentum.hpp"
 
@@ -57,11 +58,17 @@ void declare(core::PluginBuilder& b) {
     if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
       layout->estimate_field(m, ctx.plugin(), fields::wvec, 3);
       layout->estimate_field(m, ctx.plugin(), fields::ahat, 6);
+      layout->estimate_field(m, ctx.plugin(), fields::ansatz_weight, 1);
     }
   });
 
+  b.keyword("weight", {"lapse", "unit"})
+      .doc("the positive weight q of the vector-potential ansatz Zhat = chi^7/(2 q) (LW): lapse = the lapse's regular "
+           "part (the paper's eta = alpha phi; eta~ under lapse_komar), unit = 1; any positive q solves the momentum "
+           "constraint exactly, the choice moves the data by what the ansatz leaves free")
+      .default_value(std::string("lapse"));
   b.real("test_source_scale")
-      .doc("TEST ONLY: multiplies the matter term 16 pi sigma^2 eta phi^10 chi^-7 J^i by this factor, so that "
+      .doc("TEST ONLY: multiplies the matter term 16 pi sigma^2 q phi^10 chi^-7 J^i by this factor, so that "
            "tests can show that a one-coefficient error is detected; 1 for physics")
       .default_value(1.0);
   b.real("curvature_tolerance")
@@ -74,19 +81,21 @@ void declare(core::PluginBuilder& b) {
      auto& grid = ctx.services().get<Grid>("grid");
      const auto* fluid = ctx.services().find<Fluid>("hydro");
      const auto* puncture = ctx.services().find<Puncture>("puncture");
-     state->equation = std::make_shared<MomentumEquation>(grid, fluid, puncture, ctx.params().real("test_source_scale"));
+     const Weight weight = ctx.params().string("weight") == "unit" ? Weight::unit : Weight::lapse;
+     state->equation = std::make_shared<MomentumEquation>(grid, ctx.services().find<Lapse>("lapse"), weight, fluid,
+                                                          puncture, ctx.params().real("test_source_scale"));
      ctx.publish<EllipticEquation>("equation.momentum", state->equation);
      ctx.publish<FieldExport>("export.momentum", curvature_export(grid, fluid));
      ctx.log().info("momentum constraint for W^i: {}, {}", fluid ? "with matter" : "vacuum",
                     puncture ? "with a Bowen-York puncture" : "no black hole");
    })
-      .after("hamiltonian.setup")
-      .after("lapse.setup")
-      .doc("check that chi, eta, puncture_phi exist; register wvec, ahat, aa_hat; publish the equation and the export of "
+      .after_if_present("equation.hamiltonian.setup")
+      .after_if_present("lapse.setup")
+      .doc("check that chi, puncture_phi (and the lapse's regular part) exist; register wvec, wvec_weight, ahat, aa_hat; publish the equation and the export of "
            "kxx ... kzz");
 
   b.schedule(Bin::solve, "curvature", [state](Context&) { state->equation->fill_curvature(); })
-      .before("multigrid.solve")
+      .before("elliptic_solver.solve")
       .doc("ahat = Bowen-York + Zhat and aa_hat on every level, for the equations solved next");
 
   b.schedule(Bin::solve, "curvature_after_solve", [state](Context& ctx) {
@@ -94,8 +103,8 @@ void declare(core::PluginBuilder& b) {
      ctx.set_scalar("momentum_ahat_change", state->last.max_change);
      ctx.set_scalar("momentum_zhat_max", state->last.max_zhat);
    })
-      .after("multigrid.solve")
-      .doc("ahat and aa_hat again from the solved W, chi, eta, so that the output is consistent");
+      .after("elliptic_solver.solve")
+      .doc("ahat and aa_hat again from the solved W, chi, q, so that the output is consistent");
 
   b.check("curvature_consistent", [state](Context& ctx) {
      const double tol = ctx.params().real("curvature_tolerance");

@@ -110,8 +110,8 @@ void declare(core::PluginBuilder& b) {
                     "(M0 = {:.9g}, sigma = {:.9g})",
                     mu, hole->mass, hole->x[0], fluid->initial_rest_mass(), fluid->sigma());
    })
-      .after("hydro.setup")
-      .before("shift.setup")
+      .after_if_present("hydro.setup")
+      .before_if_present("equation.shift.setup")
       .doc("with mass_ratio > 0: Mhat_BH and xhat_BH from the initial star, before the shift builds its cube");
 
   b.schedule(Bin::initial, "binary_initial", [hole](Context& ctx) {
@@ -128,7 +128,7 @@ void declare(core::PluginBuilder& b) {
      ctx.log().info("puncture of the binary: Mhat_BH = {:.9g}, xhat_BH = {:.9g} for the initial sigma = {:.9g}", hole->mass,
                     hole->x[0], fluid->sigma());
    })
-      .after("hydro.initial_data")
+      .after_if_present("hydro.initial_data")
       .doc("with mass_ratio > 0: the hole again from the initial star, whose initial data set sigma_0");
 
   // INITIAL places the hole for the initial star; a resume puts back where the loop had moved it.
@@ -177,7 +177,7 @@ void declare(core::PluginBuilder& b) {
      hole->x = h.position;
      hole->p = h.momentum;
    })
-      .after("hydro.outer_step")
+      .after_if_present("hydro.outer_step")
       .doc("with mass_ratio > 0, after the star's outer step: Mhat_BH = mu_bn M_NS(M0)/sigma, xhat_BH = -xhat_C/mu_bn, "
            "Phat_y = -sigma^2 Int phi^10 j^y; skipped at the converged step");
 

@@ -5,7 +5,7 @@
 //     = -(6/phi) [ (d_j beta^i + d_i beta^j) dphi_j - (2/3) dphi_i (d_k beta^k) ]
 //       + 2 phi^-6 Ahat^ij d_j alpha + 16 pi sigma^2 alpha phi^4 J^i,
 //   phi = Mhat/(2 r) + chi,  dphi_i = -Mhat n_i/(2 r^2) + d_i chi  (the puncture's part analytic),
-//   alpha = eta/phi,  d_i alpha = (d_i eta - alpha dphi_i)/phi,
+//   alpha from the "lapse" service (refreshed before each sweep), d_i alpha by centred differences,
 //   J^i = j^i, the hydro plugin's momentum density (refreshed before each sweep).
 // The right-hand side enters core's vector sweep (stencil::vector_residual/relax) as the lower-order
 // term N = -RHS of L(beta) = lap beta + (1/3) grad div beta + N = 0.
@@ -24,7 +24,7 @@ using stencil::Triple;
 /// Arrays of one level the lower-order term reads, and the constants it needs.
 struct Sources {
   const double* chi = nullptr;           ///< regular part of phi (neighbours read: d_i chi)
-  const double* eta = nullptr;           ///< alpha phi (neighbours read: d_i eta)
+  const double* alpha = nullptr;         ///< the lapse (neighbours read: d_i alpha)
   double half_mass = 0;            ///< Mhat/2, hole only
   double x0 = 0, y0 = 0, z0 = 0;   ///< the level's point (0, 0, 0) minus xhat_BH, hole only
   double dx = 0;                   ///< the level's spacing
@@ -60,7 +60,7 @@ struct ShiftLower {
     // d_j beta^i: bx = (d_x beta^x, d_y beta^x, d_z beta^x), and so on.
     const Triple bx = stencil::gradient(x, i, h), by = stencil::gradient(y, i, h), bz = stencil::gradient(z, i, h);
     const double* c = s.chi + idx;
-    const double* e = s.eta + idx;
+    const double* a = s.alpha + idx;
     const std::ptrdiff_t sy = s.sy, sz = s.sz;
     double phi = c[0];
     double dpx = h * (c[1] - c[-1]), dpy = h * (c[sy] - c[-sy]), dpz = h * (c[sz] - c[-sz]);
@@ -74,10 +74,8 @@ struct ShiftLower {
       dpz -= m_r3 * dz;
     }
     const double inv_phi = 1.0 / phi;
-    const double alpha = e[0] * inv_phi;
-    const double dax = (h * (e[1] - e[-1]) - alpha * dpx) * inv_phi;
-    const double day = (h * (e[sy] - e[-sy]) - alpha * dpy) * inv_phi;
-    const double daz = (h * (e[sz] - e[-sz]) - alpha * dpz) * inv_phi;
+    const double alpha = a[0];
+    const double dax = h * (a[1] - a[-1]), day = h * (a[sy] - a[-sy]), daz = h * (a[sz] - a[-sz]);
 
     // (d_j beta^i + d_i beta^j) dphi_j - (2/3) dphi_i div beta
     const double div = bx.x + by.y + bz.z;

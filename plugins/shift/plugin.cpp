@@ -9,6 +9,7 @@
 #include "bhnsid/interfaces/elliptic.hpp"
 #include "bhnsid/interfaces/export.hpp"
 #include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/lapse.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "shift.hpp"
 
@@ -42,6 +43,7 @@ void declare(core::PluginBuilder& b) {
   auto state = std::make_shared<State>();
   b.require("grid");
   b.require("elliptic_solver");
+  b.require("lapse");
   b.implements("equation.shift");
   b.implements("export.shift");
   b.memory([](const Context& ctx, core::MemoryEstimate& m) {
@@ -111,7 +113,7 @@ void declare(core::PluginBuilder& b) {
      settings.local_width = static_cast<int>(ctx.params().integer("local_width"));
      settings.local_levels = static_cast<int>(ctx.params().integer("local_levels"));
      settings.coarse_local_sweeps = static_cast<int>(ctx.params().integer("coarse_local_sweeps"));
-     state->equation = std::make_shared<ShiftEquation>(grid, fluid, puncture, settings);
+     state->equation = std::make_shared<ShiftEquation>(grid, ctx.services().find<Lapse>("lapse"), fluid, puncture, settings);
      ctx.publish<EllipticEquation>("equation.shift", state->equation);
      // beta^i = dx^i/dt keeps its values under x = sigma xhat, t = sigma that; inside the excision
      // cube it is the held beta_0 (finite, not a solution there).
@@ -140,10 +142,10 @@ void declare(core::PluginBuilder& b) {
                     puncture ? "with an excised puncture" : "no black hole");
      if (puncture) log_excision(ctx, state->equation->update_puncture());
    })
-      .after("hamiltonian.setup")
+      .after_if_present("equation.hamiltonian.setup")
       .after("lapse.setup")
-      .after("momentum.setup")
-      .doc("check chi, eta, ahat; register beta (and the excision mask); publish the equation and the export of betax, "
+      .after_if_present("equation.momentum.setup")
+      .doc("check chi, alpha, ahat; register beta (and the excision mask); publish the equation and the export of betax, "
            "betay, betaz");
 
   b.checkpoint([state](Context&, core::CheckpointWriter& out) { state->equation->save(out); },
@@ -163,7 +165,7 @@ void declare(core::PluginBuilder& b) {
      ctx.set_scalar("shift_excision_side", r.cube.side);
      ctx.set_scalar("shift_excision_points", r.finest_points);
    })
-      .before("multigrid.solve")
+      .before("elliptic_solver.solve")
       .doc("the excision mask on every level when the puncture moved; beta = beta_0 on "
            "every excised point");
 }

@@ -40,20 +40,23 @@ struct Needed {
   const char* owner;
 };
 constexpr Needed needed[] = {{fields::chi, 1, "hamiltonian"},
-                             {fields::eta, 1, "lapse"},
+                             {fields::alpha, 1, "implementing 'lapse'"},
                              {fields::ahat, 6, "momentum"}};
 
 const char* puncture_parameters = "puncture.bare_mass, puncture.position, puncture.momentum";
 
 }  // namespace
 
-ShiftEquation::ShiftEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, Settings settings)
-    : grid_(grid), fluid_(fluid), puncture_(puncture), settings_(settings) {
+ShiftEquation::ShiftEquation(Grid& grid, const Lapse* lapse, const Fluid* fluid, const Puncture* puncture, Settings settings)
+    : grid_(grid), lapse_(lapse), fluid_(fluid), puncture_(puncture), settings_(settings) {
+  if (!lapse_)
+    throw core::InputError("shift: no plugin implements 'lapse'; the shift equation reads alpha: add a lapse plugin "
+                           "(lapse, lapse_komar) to plugins:");
   for (const Needed& f : needed) {
     if (!grid.has_field(f.name))
       throw core::InputError(fmt::format(
-          "shift: the field '{}' is missing; the shift equation reads chi (plugin hamiltonian), eta "
-          "(plugin lapse) and ahat (plugin momentum): add the plugin {}",
+          "shift: the field '{}' is missing; the shift equation reads chi (plugin hamiltonian), alpha "
+          "(the plugin implementing 'lapse') and ahat (plugin momentum): add the plugin {}",
           f.name, f.owner));
     const FieldInfo& info = grid.field_info(grid.field_id(f.name));
     if (info.components.size() != f.components || info.storage != core::Storage::all_levels)
@@ -61,7 +64,6 @@ ShiftEquation::ShiftEquation(Grid& grid, const Fluid* fluid, const Puncture* pun
                                          f.name, info.components.size(), core::to_string(info.storage), f.components));
   }
   chi_ = grid.field_id(fields::chi);
-  eta_ = grid.field_id(fields::eta);
   ahat_ = grid.field_id(fields::ahat);
   beta_ = grid.add_field(fields::shift, vector, core::TimeParity::odd);
   if (settings_.lattice > 0) {
@@ -118,7 +120,7 @@ OuterBoundary ShiftEquation::boundary() const {
 }
 
 std::vector<std::string> ShiftEquation::coefficients() const {
-  // chi and eta are the unknowns of hamiltonian and lapse; ahat is filled on every level by its
+  // chi is hamiltonian's unknown and alpha is formed on each level from the lapse's; ahat is filled on every level by its
   // owner and the puncture's terms are computed in the kernel, so none of them is restricted.
   // The projections are formed by the hydro plugin on each level from its restricted inputs.
   if (!fluid_) return {};
@@ -129,7 +131,7 @@ Sources ShiftEquation::sources(int level) const {
   const Level& lv = grid_.level(level);
   Sources s;
   s.chi = grid_.data(chi_, 0, level);
-  s.eta = grid_.data(eta_, 0, level);
+  s.alpha = lapse_on(grid_, *lapse_, level);
   for (int c = 0; c < 6; ++c) s.ahat[c] = grid_.data(ahat_, c, level);
   if (puncture_) {
     const std::array<double, 3> x_bh = puncture_->position();

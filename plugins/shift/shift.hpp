@@ -11,6 +11,7 @@
 #include "bhnsid/core/checkpoint.hpp"
 #include "bhnsid/interfaces/elliptic.hpp"
 #include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/lapse.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "excision.hpp"
 #include "kernels.hpp"
@@ -41,11 +42,11 @@ struct ExcisionReport {
 
 class ShiftEquation final : public EllipticEquation {
  public:
-  /// Registers beta (and, with a puncture, the excision mask); reads chi, eta and ahat, which other
-  /// plugins register: core::InputError naming the missing field and its plugin otherwise. With a
+  /// Registers beta (and, with a puncture, the excision mask); reads chi, ahat and the lapse, which other
+  /// plugins provide: core::InputError naming the missing field or service otherwise. With a
   /// puncture: InputError for Mhat_BH <= 0, |v| >= 1 or a cube reaching the outer boundary. fluid
   /// and puncture may be null (vacuum, no hole).
-  ShiftEquation(Grid& grid, const Fluid* fluid, const Puncture* puncture, Settings settings);
+  ShiftEquation(Grid& grid, const Lapse* lapse, const Fluid* fluid, const Puncture* puncture, Settings settings);
 
   std::string name() const override { return "shift"; }
   std::string unknown() const override { return fields::shift; }
@@ -84,10 +85,11 @@ class ShiftEquation final : public EllipticEquation {
   void check_puncture(double mass, const std::array<double, 3>& position, const std::array<double, 3>& momentum) const;
 
   Grid& grid_;
+  const Lapse* lapse_;
   const Fluid* fluid_;
   const Puncture* puncture_;
   Settings settings_;
-  int beta_ = -1, chi_ = -1, eta_ = -1, ahat_ = -1;
+  int beta_ = -1, chi_ = -1, ahat_ = -1;
   int mask_ = -1;
   // The puncture the mask was last built for.
   bool built_ = false;

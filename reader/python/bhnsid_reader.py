@@ -523,8 +523,16 @@ class Reader:
             elif name == "alp":
                 if puncture:
                     metric = True
-                    need("/variables/eta", "alp = eta/phi at a puncture")
-                    plan.append(("lapse", None))
+                    # alp phi = eta - c M/(2r): the paper's regular eta (c = 0) or lapse_komar's eta~ and c.
+                    if has("/variables/eta") or not has("/variables/eta_regular"):
+                        plan.append(("lapse", (need("/variables/eta", "alp = eta/phi at a puncture (or "
+                                                    "/variables/eta_regular with /scalars@lapse_komar_c)"), 0.0)))
+                    else:
+                        if "lapse_komar_c" not in self.scalars:
+                            raise ReaderError(ERR_FORMAT, "%s has /variables/eta_regular but no /scalars@lapse_komar_c"
+                                              % self.path)
+                        plan.append(("lapse", (need("/variables/eta_regular", "alp = (eta~ - c M/(2r))/phi at a "
+                                                    "puncture"), self.scalars["lapse_komar_c"])))
                 else:
                     plan.append(("raw", need("/ADMBase/alp", "alp")))
             elif name in ("betax", "betay", "betaz") or (name[:1] == "k" and name[1:] in _SUFFIX):
@@ -614,7 +622,8 @@ class Reader:
                     m, pos = self.puncture
                     d = [points[a] - pos[a] for a in range(3)]
                     r = np.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
-                    phi = m / (2 * r) + ip("/variables/chi")
+                    cache["pole"] = m / (2 * r)
+                    phi = cache["pole"] + ip("/variables/chi")
                     g = phi ** 4
                     at = (r == 0) | ((phi > 0) & ~np.isfinite(g) & ~extrapolated)
                     bad = np.flatnonzero(at | ~np.isfinite(g) | ~(phi > 0))
@@ -651,7 +660,8 @@ class Reader:
                 v = np.zeros_like(x)
             elif kind == "lapse":
                 phi_and_metric()
-                v = ip("/variables/eta") / cache["phi"]
+                path, strength = arg
+                v = (ip(path) - strength * cache["pole"]) / cache["phi"]
             elif kind == "metric":
                 v = phi_and_metric()[arg].copy()
             elif kind == "rho":

@@ -62,7 +62,7 @@ void eos_at(const PiecewisePolytrope& eos, double rho, double& press, double& ep
 
 struct Request::Point {
   bool have_metric = false, have_rho = false;
-  double phi = 0;
+  double phi = 0, pole = 0;  ///< phi and its puncture part M/(2r)
   std::array<double, 6> g{};
   double rho = 0;
 };
@@ -87,7 +87,16 @@ Request::Request(const DataFile& file, const std::vector<std::string>& names, bo
       it.kind = Kind::lapse;
       if (puncture_) {
         metric_used = true;
-        eta_ = need("/variables/eta", "alp = eta/phi at a puncture");
+        // alp phi = eta - c M/(2r): the paper's lapse stores a regular eta (c = 0), lapse_komar its
+        // regular part eta~ and c; only these smooth fields are interpolated, the pole is exact.
+        if (file.has_dataset("/variables/eta") || !file.has_dataset("/variables/eta_regular")) {
+          eta_ = need("/variables/eta", "alp = eta/phi at a puncture (or /variables/eta_regular with /scalars@lapse_komar_c)");
+        } else {
+          eta_ = need("/variables/eta_regular", "alp = (eta~ - c M/(2r))/phi at a puncture");
+          const std::optional<double> c = file.scalar("lapse_komar_c");
+          if (!c) throw Error(BHNSID_READER_ERR_FORMAT, file.path() + " has /variables/eta_regular but no /scalars@lapse_komar_c");
+          lapse_strength_ = *c;
+        }
       } else {
         it.data = need("/ADMBase/alp", "alp");
       }
@@ -153,7 +162,8 @@ void Request::metric(const Stencil& s, std::size_t index, Point& p) const {
   if (puncture_) {
     const double dx = s.point[0] - bh_position_[0], dy = s.point[1] - bh_position_[1], dz = s.point[2] - bh_position_[2];
     const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-    p.phi = bh_mass_ / (2 * r) + interpolate(file_.grid(), *chi_, s);
+    p.pole = bh_mass_ / (2 * r);
+    p.phi = p.pole + interpolate(file_.grid(), *chi_, s);
     const double g = std::pow(p.phi, 4);
     if (r == 0 || (p.phi > 0 && !std::isfinite(g) && !s.extrapolated))
       throw Error(BHNSID_READER_ERR_PUNCTURE, point_text(index, s) + " is at the puncture, where the metric is infinite");
@@ -199,7 +209,7 @@ void Request::evaluate(const Stencil& s, std::size_t index, double* out) const {
       case Kind::lapse:
         if (puncture_) {
           metric(s, index, p);
-          v = interpolate(g, *eta_, s) / p.phi;
+          v = (interpolate(g, *eta_, s) - lapse_strength_ * p.pole) / p.phi;
         } else {
           v = interpolate(g, *it.data, s);
         }

@@ -47,7 +47,8 @@ class Request {
   double bh_mass_ = 0;
   std::array<double, 3> bh_position_{};
   const Field* chi_ = nullptr;
-  const Field* eta_ = nullptr;
+  const Field* eta_ = nullptr;       // eta, or lapse_komar's eta~
+  double lapse_strength_ = 0;        // c of alp phi = eta - c M/(2r)
   std::array<const Field*, 6> metric_{};  // stored g_ij without a puncture
   const Field* rho_ = nullptr;            // null: vacuum
   std::array<const Field*, 3> vel_{};

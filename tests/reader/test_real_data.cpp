@@ -123,7 +123,7 @@ void check_run(const std::string& name, std::size_t expect_fields, bool puncture
   }
   std::printf("%s: %zu fields, %zu scalars; %zu values at grid points equal the stored ones, %zu in the excision "
               "cube filled\n", name.c_str(), fields.size(), scalars.size(), compared, held);
-  CHECK((held > 0) == (name == "binary32" || name == "paper64" || name == "boosted"));
+  CHECK((held > 0) == (name == "binary32" || name == "paper64" || name == "boosted" || name == "komar"));
 
   // Random points: finite everywhere, and the EOS's formulas on the returned rho.
   Random rnd(3);
@@ -162,6 +162,9 @@ TEST_CASE("reader.real.binary", "[reader]") { check_run("binary32", 23, true, tr
 TEST_CASE("reader.real.static_star", "[reader]") { check_run("static_star", 23, false, true); }
 // A vacuum run: no HydroBase, so rho..w_lorentz are zero/one but still answered (absent = vacuum).
 TEST_CASE("reader.real.boosted_puncture", "[reader]") { check_run("boosted", 23, true, false); }
+// lapse_komar: alp = (eta~ - c M/(2r))/phi from /variables/eta_regular and /scalars@lapse_komar_c,
+// negative inside the horizon; at the grid points it must equal the stored alp.
+TEST_CASE("reader.real.komar_puncture", "[reader]") { check_run("komar", 23, true, false); }
 // The paper's example (parfiles/paper_example.yaml) at its coarsest validation grid, n = 64.
 TEST_CASE("reader.real.paper_example", "[reader]") {
   check_run("paper64", 23, true, true);

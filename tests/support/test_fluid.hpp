@@ -10,11 +10,28 @@
 #include <vector>
 
 #include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/lapse.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 
 namespace bhnsid::test {
 
 inline constexpr const char* test_fluid_velocity = "test_fluid_velocity";
+
+/// TEST ONLY: the "lapse" of a stand-in that registers eta, chi, puncture_phi and alpha itself and
+/// fills eta with a manufactured function: alpha = eta / (puncture_phi + chi), regular part eta.
+class EtaOverPhiLapse final : public Lapse {
+ public:
+  void update(Grid& grid, int level) const override {
+    const int id = grid.field_id(fields::alpha);
+    double* alpha = grid.data(id, 0, level);
+    const double* eta = grid.data(grid.field_id(fields::eta), 0, level);
+    const double* chi = grid.data(grid.field_id(fields::chi), 0, level);
+    const double* pphi = grid.data(grid.field_id(fields::puncture_phi), 0, level);
+    for_stored_points(grid.level(level), [&](std::ptrdiff_t p) { alpha[p] = eta[p] / (pphi[p] + chi[p]); });
+    grid.fill_ghosts(id, level);
+  }
+  std::string regular_part() const override { return fields::eta; }
+};
 
 class FieldVelocityFluid final : public Fluid {
  public:

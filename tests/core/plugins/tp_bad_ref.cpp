@@ -3,7 +3,7 @@
 
 namespace {
 using namespace bhnsid::core;
-void declare(PluginBuilder& b) { b.schedule(Bin::setup, "late", [](Context&) {}).after("tp_counter.no_such_entry"); }
+void declare(PluginBuilder& b) { b.schedule(Bin::setup, "late", [](Context&) {}).after("counter.no_such_entry"); }
 }  // namespace
 
 extern "C" BHNSID_EXPORT const BhnsidPluginInfo* bhnsid_plugin_info() {

@@ -4,8 +4,9 @@
 namespace {
 using namespace bhnsid::core;
 void declare(PluginBuilder& b) {
-  b.schedule(Bin::setup, "first", [](Context&) {}).before("tp_cycle.second");
-  b.schedule(Bin::setup, "second", [](Context&) {}).before("tp_cycle.first");
+  b.implements("cycle");
+  b.schedule(Bin::setup, "first", [](Context&) {}).before("cycle.second");
+  b.schedule(Bin::setup, "second", [](Context&) {}).before("cycle.first");
 }
 }  // namespace
 

@@ -1,5 +1,5 @@
 // Test plugin: requires the `counter` capability, orders itself around tp_counter's entries
-// (and around an entry of a plugin that is not active, which must be ignored), reads the service.
+// (and, if present, around a capability that no active plugin implements), reads the service.
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/plugin.hpp"
 #include "tp_interfaces.hpp"
@@ -11,10 +11,10 @@ void declare(PluginBuilder& b) {
   b.require("counter");
   b.schedule(Bin::initial, "before_counter", [](Context& ctx) {
     ctx.set_scalar("partner_saw_counter", ctx.services().get<bhnsid::test::CounterService>("counter").value);
-  }).before("tp_counter.initial").after("not_loaded_plugin.anything").doc("runs before tp_counter.initial");
+  }).before("counter.initial").after_if_present("not_loaded.anything").doc("runs before tp_counter.initial");
   b.schedule(Bin::analysis, "after_counter", [](Context& ctx) {
     ctx.set_scalar("partner_final_counter", ctx.services().get<bhnsid::test::CounterService>("counter").value);
-  }).after("tp_counter.analysis");
+  }).after("counter.analysis");
 }
 }  // namespace
 

@@ -37,7 +37,7 @@ void declare(PluginBuilder& b) {
      if (s->fail_once(ctx))
        throw StepFailure(fmt::format("deliberate step failure {} at iteration {}", s->failures, ctx.iteration()));
    })
-      .after("elliptic_solver.solve")
+      .after_if_present("elliptic_solver.solve")
       .doc("fails with a StepFailure at fail_at");
   b.schedule(Bin::update, "update", [s](Context& ctx) {
     s->steps += fmt::format("update {} {}\n", ctx.iteration(), ctx.step_fraction());

@@ -8,6 +8,7 @@
 #include "bhnsid/core/errors.hpp"
 #include "hierarchy.hpp"
 #include "momentum.hpp"
+#include "test_fluid.hpp"
 #include "uniform_grid.hpp"
 
 using namespace bhnsid;
@@ -56,6 +57,9 @@ std::array<double, 6> ahat_at(Grid& g, int l, int i, int j, int k) {
   return t;
 }
 
+/// The lapse of the stand-in fields: its regular part, eta, is the ansatz weight.
+const test::EtaOverPhiLapse eta_lapse;
+
 }  // namespace
 
 TEST_CASE("plugins.momentum.bowen_york_fill", "[plugins][momentum]") {
@@ -67,7 +71,7 @@ TEST_CASE("plugins.momentum.bowen_york_fill", "[plugins][momentum]") {
   FakePuncture hole;
   hole.x = {-0.1871, 0.0, 0.0};
   hole.p = {0.12, -0.35, 0.0};
-  momentum::MomentumEquation eq(*g, nullptr, &hole, 1.0);
+  momentum::MomentumEquation eq(*g, &eta_lapse, momentum::Weight::lapse, nullptr, &hole, 1.0);
   eq.fill_curvature();
   const double p2 = 0.12 * 0.12 + 0.35 * 0.35;
   const int aa_id = g->field_id(fields::aa);
@@ -108,7 +112,7 @@ TEST_CASE("plugins.momentum.zhat_fill_is_exact_for_quadratic_w", "[plugins][mome
     auto chi_of = [](double x, double y, double z) { return 1.2 + 0.1 * x * x - 0.05 * y + 0.02 * z * z; };
     auto eta_of = [](double x, double y, double) { return 0.9 - 0.1 * x * y + 0.03 * y; };
     add_chi_eta(*g, chi_of, eta_of);
-    momentum::MomentumEquation eq(*g, nullptr, nullptr, 1.0);
+    momentum::MomentumEquation eq(*g, &eta_lapse, momentum::Weight::lapse, nullptr, nullptr, 1.0);
     const int w = g->field_id(fields::wvec);
     const Level& fine = g->finest();
     for (int k = -1; k <= fine.nz; ++k)
@@ -156,8 +160,28 @@ TEST_CASE("plugins.momentum.refuses_a_puncture_on_a_grid_point", "[plugins][mome
   FakePuncture hole;
   hole.x = {0.4, 0.0, 0.0};  // a point of level 2 (spacing 0.4), not of level 0's neighbours only
   hole.p = {0.0, 0.3, 0.0};
-  momentum::MomentumEquation eq(*g, nullptr, &hole, 1.0);
+  momentum::MomentumEquation eq(*g, &eta_lapse, momentum::Weight::lapse, nullptr, &hole, 1.0);
   CHECK_THROWS_AS(eq.fill_curvature(), core::RunFailure);
   hole.x = {0.4 + 0.013, 0.0, 0.0};
   CHECK_NOTHROW(eq.fill_curvature());
+}
+
+TEST_CASE("plugins.momentum.the_ansatz_weight_is_free_and_must_be_positive", "[plugins][momentum]") {
+  // Zhat = chi^7/(2 q) (LW): q = 1 (momentum.weight: unit) gives chi^7/2 (LW) whatever eta is, and a
+  // weight that is not positive somewhere (the regular part of a lapse gone wrong) stops the fill with
+  // a RunFailure naming the point, never a Zhat of the wrong sign.
+  auto g = make_grid(16, 0.1, Symmetry::equatorial);
+  add_chi_eta(*g, [](double, double, double) { return 1.1; }, [](double x, double, double) { return x > 0.3 ? -0.2 : 0.7; });
+  momentum::MomentumEquation unit(*g, nullptr, momentum::Weight::unit, nullptr, nullptr, 1.0);
+  const int w = g->field_id(fields::wvec);
+  const Level& fine = g->finest();
+  for (int k = -1; k <= fine.nz; ++k)
+    for (int j = -1; j <= fine.ny; ++j)
+      for (int i = -1; i <= fine.nx; ++i) g->data(w, 0, 0)[fine.at(i, j, k)] = 0.3 * fine.x(i);  // (LW)^xx = 0.4
+  unit.fill_curvature();
+  const int ahat = g->field_id(fields::ahat);
+  CHECK(g->data(ahat, 0, 0)[fine.at(8, 8, 2)] == Approx(0.5 * std::pow(1.1, 7) * 0.4).epsilon(1e-12));
+  momentum::MomentumEquation by_lapse(*g, &eta_lapse, momentum::Weight::lapse, nullptr, nullptr, 1.0);
+  CHECK_THROWS_WITH(by_lapse.fill_curvature(), Catch::Matchers::Contains("ansatz weight q = -0.2") &&
+                                                   Catch::Matchers::Contains("not positive"));
 }

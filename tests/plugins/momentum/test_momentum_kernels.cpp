@@ -51,7 +51,7 @@ struct Fixture {
   momentum::Sources sources(double sigma, double scale) const {
     momentum::Sources s;
     s.chi = chi.data();
-    s.eta = eta.data();
+    s.weight = eta.data();
     s.puncture_phi = pphi.data();
     for (int c = 0; c < 3; ++c) s.matter.momentum[c] = j[c].data();
     s.sy = sy;

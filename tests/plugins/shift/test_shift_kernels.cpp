@@ -43,12 +43,12 @@ struct Quadratic {
 
 struct PointSetup {
   Level lv = make_level(4, 0.1, false);
-  std::vector<double> beta[3], chi, eta, ahat[6], jm[3];
+  std::vector<double> beta[3], chi, alpha, ahat[6], jm[3];
   Quadratic qb[3] = {{0.10, {0.3, -0.2, 0.1}, {{0.5, 0.2, -0.1}, {0.2, -0.4, 0.3}, {-0.1, 0.3, 0.6}}},
                      {-0.05, {0.1, 0.4, -0.3}, {{-0.2, 0.1, 0.0}, {0.1, 0.3, -0.2}, {0.0, -0.2, 0.1}}},
                      {0.02, {-0.25, 0.15, 0.35}, {{0.1, -0.3, 0.2}, {-0.3, 0.2, 0.1}, {0.2, 0.1, -0.5}}}};
   Quadratic qchi{1.1, {0.2, -0.1, 0.05}, {{0.3, 0.1, 0.0}, {0.1, -0.2, 0.1}, {0.0, 0.1, 0.4}}};
-  Quadratic qeta{0.8, {-0.15, 0.1, 0.2}, {{-0.2, 0.0, 0.1}, {0.0, 0.3, -0.1}, {0.1, -0.1, 0.2}}};
+  Quadratic qalpha{0.8, {-0.15, 0.1, 0.2}, {{-0.2, 0.0, 0.1}, {0.0, 0.3, -0.1}, {0.1, -0.1, 0.2}}};
   // The point (i, j, k) = (2, 2, 2) at the origin, and the values there. The hole: bare mass
   // 0.6 at distance 1, so that its phi is 0.3 and its dphi -0.3 (x - xhat_BH).
   std::ptrdiff_t idx = lv.at(2, 2, 2);
@@ -59,7 +59,7 @@ struct PointSetup {
   PointSetup() {
     auto make = [&](std::vector<double>& f) { f.assign(lv.size, 0.0); };
     for (auto& f : beta) make(f);
-    for (auto* f : {&chi, &eta}) make(*f);
+    for (auto* f : {&chi, &alpha}) make(*f);
     for (auto& f : ahat) make(f);
     for (auto& f : jm) make(f);
     for (int k = -1; k <= lv.nz; ++k)
@@ -69,7 +69,7 @@ struct PointSetup {
           const double x = lv.x(i), y = lv.y(j), z = lv.z(k);
           for (int c = 0; c < 3; ++c) beta[c][p] = qb[c](x, y, z);
           chi[p] = qchi(x, y, z);
-          eta[p] = qeta(x, y, z);
+          alpha[p] = qalpha(x, y, z);
         }
     for (int c = 0; c < 3; ++c) jm[c][idx] = J[c];
     for (int c = 0; c < 6; ++c) ahat[c][idx] = a[c];
@@ -78,7 +78,7 @@ struct PointSetup {
   Sources sources(double sigma, double scale) const {
     Sources s;
     s.chi = chi.data();
-    s.eta = eta.data();
+    s.alpha = alpha.data();
     s.half_mass = 0.5 * mass;
     s.x0 = lv.x(0) - x_bh[0], s.y0 = lv.y(0) - x_bh[1], s.z0 = lv.z(0) - x_bh[2];
     s.dx = lv.dx;
@@ -112,10 +112,11 @@ struct PointSetup {
     const double punc = mass / (2 * r);
     const double phi = qchi(0, 0, 0) + (hole ? punc : 0.0);
     double dphi[3], dalpha[3];
-    const double alpha = qeta(0, 0, 0) / phi;
+    // alpha is the lapse service's field: the kernel differences it as it is (a quadratic: exactly).
+    const double alpha = qalpha(0, 0, 0);
     for (int j = 0; j < 3; ++j) {
       dphi[j] = qchi.d(j, o) + (hole ? mass * x_bh[j] / (2 * r * r * r) : 0.0);
-      dalpha[j] = (qeta.d(j, o) - alpha * dphi[j]) / phi;
+      dalpha[j] = qalpha.d(j, o);
     }
     const double A[3][3] = {{a[0], a[1], a[2]}, {a[1], a[3], a[4]}, {a[2], a[4], a[5]}};
     const double div = db[0][0] + db[1][1] + db[2][2];
@@ -141,7 +142,7 @@ void check_triple(const stencil::Triple& t, const std::array<double, 3>& e) {
 
 TEST_CASE("plugins.shift.point_term_is_eq_mindist_hat", "[plugins][shift]") {
   // The kernel's lower-order term is minus the right-hand side of eq. mindist_hat, with the hatted
-  // dphi = puncture part + d chi, alpha = eta/phi and the hydro plugin's J^i, in all four variants
+  // dphi = puncture part + d chi, alpha (the lapse's field, differenced as it is) and the hydro plugin's J^i, in all four variants
   // (hole, matter), and test_source_scale multiplies the Ahat term only.
   const PointSetup ps;
   const double sigma = 0.85;

@@ -280,15 +280,15 @@ TEST_CASE("plugins.shift.bad_punctures_are_refused", "[plugins][shift]") {
 }
 
 TEST_CASE("plugins.shift.missing_fields_are_refused", "[plugins][shift]") {
-  // Without the plugins that provide chi, puncture_phi, eta (hamiltonian, lapse) or ahat (momentum),
-  // the run is refused at SETUP (exit 2) naming the missing field and the plugin that provides it.
+  // Without a lapse the parameter file is refused before anything runs, naming the plugins that
+  // implement one; without the plugins that provide chi or ahat (hamiltonian, momentum) the run is
+  // refused at SETUP (exit 2) naming the missing field and the plugin that provides it.
   TempDir tmp;
   const Run bare = run_yaml(tmp, "bare", "plugins: [grid, multigrid, shift]\n");
   INFO(bare.output);
   CHECK(bare.exit_code == 2);
-  CHECK(bare.output.find("shift.setup") != std::string::npos);
-  CHECK(bare.output.find("'chi' is missing") != std::string::npos);
-  CHECK(bare.output.find("plugin hamiltonian") != std::string::npos);
+  CHECK(bare.output.find("requires capability 'lapse'") != std::string::npos);
+  CHECK(bare.output.find("lapse_komar") != std::string::npos);
 
   const Run no_ahat = run_yaml(tmp, "no_ahat", mms_parfile(32, "V", "shift_test_fields: {provide_ahat: false}\n"));
   INFO(no_ahat.output);

@@ -16,7 +16,7 @@
 #include "bhnsid/core/schedule.hpp"
 #include "bhnsid/core/variables.hpp"
 
-#define BHNSID_ABI_VERSION 3u  // 2: PluginDecl gained the checkpoint functions; 3: the warm start
+#define BHNSID_ABI_VERSION 4u  // 2: PluginDecl gained the checkpoint functions; 3: the warm start; 4: ScheduleRef
 #define BHNSID_EXPORT __attribute__((visibility("default")))
 
 namespace bhnsid::core {
@@ -66,10 +66,15 @@ class ScheduleHandle {
  public:
   ScheduleHandle(PluginDecl& decl, std::size_t index) : decl_(&decl), index_(index) {}
   ScheduleHandle& doc(std::string text);
-  /// Order against "plugin.entry", or "capability.entry" (the entry of whichever active plugin
-  /// implements the capability); ignored when no active plugin is or implements that name.
-  ScheduleHandle& before(std::string full_name);
-  ScheduleHandle& after(std::string full_name);
+  /// Order against "capability.entry": the entry of whichever active plugin implements the
+  /// capability ("lapse.setup" is the setup of the lapse in use, whichever plugin that is). Building
+  /// the schedule fails, naming the reference, when no active plugin implements it or that plugin has
+  /// no such entry.
+  ScheduleHandle& before(std::string reference);
+  ScheduleHandle& after(std::string reference);
+  /// The same, for a capability the run may lack: the constraint holds only when it is present.
+  ScheduleHandle& before_if_present(std::string reference);
+  ScheduleHandle& after_if_present(std::string reference);
 
  private:
   PluginDecl* decl_;

@@ -29,13 +29,23 @@ struct Convergence {
 using ScheduledFn = std::function<void(Context&)>;
 using CheckFn = std::function<Convergence(Context&)>;
 
+/// An ordering constraint: "capability.entry" names the entry `entry` of whichever active plugin
+/// implements `capability` (split at the last dot: capabilities may hold dots, entry names may not),
+/// so that a plugin orders itself against a role and never against the plugin that fills it.
+struct ScheduleRef {
+  std::string target;
+  /// false: no active plugin implementing the capability is an error naming the reference;
+  /// true: the constraint holds only when one is active (a hole without a star, a star without a hole).
+  bool if_present = false;
+};
+
 struct ScheduleEntry {
   std::string plugin;  ///< filled in by the core
-  std::string name;    ///< unique within the plugin; referred to as "plugin.name"
+  std::string name;    ///< an identifier, unique within the plugin; referred to as "capability.name"
   Bin bin = Bin::startup;
   std::string doc;
-  std::vector<std::string> before;  ///< "plugin.name" entries of the same bin this must precede
-  std::vector<std::string> after;   ///< "plugin.name" entries of the same bin this must follow
+  std::vector<ScheduleRef> before;  ///< entries of the same bin this must precede
+  std::vector<ScheduleRef> after;   ///< entries of the same bin this must follow
   ScheduledFn fn;                   ///< every bin but CHECK
   CheckFn check;                    ///< CHECK only
 

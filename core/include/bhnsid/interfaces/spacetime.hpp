@@ -20,9 +20,12 @@ namespace fields {
 inline constexpr const char* chi = "chi";              ///< hamiltonian: regular part of phi (eq. ham_hat)
 inline constexpr const char* puncture_phi = "puncture_phi";  ///< hamiltonian: Mhat_BH / (2 rhat_BH), 0 without a hole
 inline constexpr const char* aa = "aa_hat";            ///< hamiltonian: sum_ij (Ahat^ij)^2, filled by a curvature plugin
-inline constexpr const char* eta = "eta";              ///< lapse: eta = alpha phi (eq. maxslice_hat)
+inline constexpr const char* eta = "eta";              ///< lapse (the paper's): eta = alpha phi (eq. maxslice_hat)
 inline constexpr const char* shift = "beta";           ///< shift: beta^i (3 components, time-odd)
 inline constexpr const char* wvec = "wvec";            ///< momentum: the vector potential W^i (3 components, time-odd)
+/// momentum: the positive weight q of the vector-potential ansatz Zhat^ij = chi^7/(2 q) (LW)^ij, every
+/// level (physics-notes §2.3 has q = eta; any positive q solves the momentum constraint exactly).
+inline constexpr const char* ansatz_weight = "wvec_weight";
 /// momentum: Ahat^ij = Ahat_BY^ij + Zhat^ij, 6 components xx, xy, xz, yy, yz, zz (time-odd), on every
 /// level; it also fills aa_hat from it. Both are refreshed before each field solve.
 inline constexpr const char* ahat = "ahat";

@@ -43,6 +43,7 @@ void fill(Grid& grid, const bhnsid::test::FieldVelocityFluid& fluid, const Probl
   const int chi = omit == "chi" ? -1 : grid.add_field(fields::chi, scalar);
   const int eta = omit == "eta" ? -1 : grid.add_field(fields::eta, scalar);
   const int pphi = omit == "puncture_phi" ? -1 : grid.add_field(fields::puncture_phi, scalar);
+  grid.add_field(fields::alpha, scalar);
   const auto [rho0, press, enthalpy, vel] = fluid.attach(grid);
   double max_v2 = 0;
   for (int l = 0; l < grid.num_levels(); ++l) {
@@ -74,6 +75,7 @@ void declare(core::PluginBuilder& b) {
   auto state = std::make_shared<State>();
   b.require("grid");
   b.implements("hydro");
+  b.implements("lapse");
   b.real("sigma").doc("the Fluid's sigma (multiplies the matter term by sigma^2)").default_value(0.8).greater_than(0);
   b.real("velocity_scale")
       .doc("V = velocity_scale * J; rho0 = alpha (1 - v^2) / velocity_scale then carries J (max v^2 about 0.3 at 0.02)")
@@ -97,13 +99,15 @@ void declare(core::PluginBuilder& b) {
      state->problem.eta_bump.amp = ctx.params().real("eta_amplitude");
      state->fluid->sigma_value = state->problem.sigma;
      ctx.publish<bhnsid::Fluid>("hydro", state->fluid);
-   }).doc("publish the test Fluid");
+     ctx.publish<bhnsid::Lapse>("lapse", std::make_shared<bhnsid::test::EtaOverPhiLapse>());
+   }).doc("publish the test Fluid and the lapse alpha = eta/phi (its regular part eta is the momentum weight)");
 
-  b.schedule(Bin::setup, "fields", [state](Context& ctx) {
+  // Named "setup": as the stand-in "lapse" it is the entry that momentum orders itself after.
+  b.schedule(Bin::setup, "setup", [state](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");
      fill(grid, *state->fluid, state->problem, ctx.params().real("velocity_scale"), ctx.params().string("omit"));
    })
-      .before("momentum.setup")
+      .before("equation.momentum.setup")
       .doc("chi, eta, puncture_phi and the fluid fields on every level");
 
   b.schedule(Bin::analysis, "errors", [state](Context& ctx) {

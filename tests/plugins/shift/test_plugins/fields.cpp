@@ -1,5 +1,5 @@
 // TEST ONLY plugin for the shift's tests: it stands in for the hamiltonian, lapse, momentum and hydro
-// plugins. It registers chi, eta, puncture_phi and ahat and fills them on every level with the
+// plugins. It registers chi, eta, alpha, puncture_phi and ahat, publishes a "lapse" (alpha = eta/phi), and fills them on every level with the
 // manufactured functions of support/manufactured.hpp (puncture_phi = Mhat/(2 r) from a "puncture"
 // service, if any, before every solve), and with `matter` publishes a "hydro" Fluid whose rho0 and
 // velocity make beta_exact the exact solution. ANALYSIS: the error of beta against beta_exact
@@ -46,12 +46,15 @@ void for_all_points(const Level& lv, Fn&& fn) {
 void declare(bhnsid::core::PluginBuilder& b) {
   b.require("grid");
   b.implements("hydro");
+  b.implements("lapse");
   b.boolean("matter").doc("publish the hydro service with the manufactured rho0 and fluid velocity").default_value(true);
   b.boolean("provide_ahat").doc("register ahat (false: show the shift's missing-field error)").default_value(true);
 
   b.schedule(Bin::startup, "fields", [](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");
      const int chi = grid.add_field(fields::chi, scalar), eta = grid.add_field(fields::eta, scalar);
+     grid.add_field(fields::alpha, scalar);
+     ctx.publish<bhnsid::Lapse>("lapse", std::make_shared<bhnsid::test::EtaOverPhiLapse>());
      grid.add_field(fields::puncture_phi, scalar);
      const bool ahat_wanted = ctx.params().boolean("provide_ahat");
      const int ahat = ahat_wanted ? grid.add_field(fields::ahat, tensor, bhnsid::core::TimeParity::odd) : -1;
@@ -83,7 +86,11 @@ void declare(bhnsid::core::PluginBuilder& b) {
      ctx.publish<bhnsid::Fluid>("hydro", fluid);
    })
       .after("grid.create")
-      .doc("register and fill chi, eta, puncture_phi, ahat (and the fluid), publish hydro");
+      .doc("register and fill chi, eta, puncture_phi, ahat (and the fluid), publish lapse and hydro");
+
+  b.schedule(Bin::setup, "setup", [](Context&) {})
+      .doc("nothing: the stand-in's fields and services exist from STARTUP; as the \"lapse\" it is the entry the "
+           "shift orders itself after");
 
   b.schedule(Bin::solve, "puncture_phi", [](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");
@@ -101,7 +108,7 @@ void declare(bhnsid::core::PluginBuilder& b) {
        });
      }
    })
-      .before("multigrid.solve")
+      .before("elliptic_solver.solve")
       .doc("puncture_phi = Mhat/(2 r) on every level from the current puncture (0 without one)");
 
   b.schedule(Bin::analysis, "errors", [](Context& ctx) {
