@@ -10,7 +10,8 @@ separations, whose A is 3 - nu at 1PN. M_tot = M_BH + M_NS with M_NS the isolate
 the same M0 and M_BH the hole's mass column (--hole-mass, default the apparent-horizon mass when the
 run has one, else the puncture mass sigma Mhat chi(puncture)); d is the coordinate distance from the
 puncture to the star's density maximum. Only the standard library.
-Usage: scripts/kepler_limit.py OUTDIR [--n 288 --dx 0.0225] [--only komar_virial,komar_static,paper]
+Usage: scripts/kepler_limit.py OUTDIR [--n 288 --dx 0.0225] [--only komar_virial,komar_static,paper] [--bhnsid EXE]
+A run whose OUTDIR/NAME/summary.json exists is not run again.
 """
 import argparse
 import json
@@ -19,7 +20,7 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EXE = os.path.join(ROOT, "build", "bin", "bhnsid")
+EXE = os.path.join(ROOT, "build", "bin", "bhnsid")  # --bhnsid: another build (a copy left alone while runs go on)
 # (rho_max, x_A): d/R = 2 (1 + x_A)/(1 - x_A) ~ 5.8, 6.8, 6.0 gives d/M_tot ~ 20, 40, 80 for the TOV
 # stars of these central densities (M_NS = 0.1270, 0.0862, 0.0427; R_iso = 0.873, 1.020, 1.146).
 CONFIGS = [(0.1, 0.489), (0.05, 0.543), (0.02, 0.497)]
@@ -30,9 +31,9 @@ LAPSES = {
 }
 
 
-def run(out, parfile, sets):
+def run(exe, out, parfile, sets):
     if not os.path.exists(os.path.join(out, "summary.json")):
-        cmd = [EXE, "run", os.path.join(ROOT, "parfiles", parfile), "--output", out, "--force"]
+        cmd = [exe, "run", os.path.join(ROOT, "parfiles", parfile), "--output", out, "--force"]
         for s in sets:
             cmd += ["--set", s]
         with open(out + ".log", "w") as log:
@@ -47,6 +48,7 @@ def main():
     p.add_argument("--n", type=int, default=288)
     p.add_argument("--dx", type=float, default=0.0225)
     p.add_argument("--only", default=",".join(LAPSES))
+    p.add_argument("--bhnsid", default=EXE)
     p.add_argument("--hole-mass", default="auto", choices=["auto", "bh_irreducible_mass", "bh_puncture_mass", "bh_bare_mass"])
     a = p.parse_args()
     os.makedirs(a.outdir, exist_ok=True)
@@ -59,7 +61,7 @@ def main():
             out = os.path.join(a.outdir, f"{lapse}_rho{rho}")
             sets = [f"grid.n={a.n}", f"grid.dx={a.dx}", f"hydro_corotating.rho_max={rho}",
                     f"hydro_corotating.x_a={x_a}", "run.max_iterations=120"] + extra
-            summary = run(out, parfile, sets)
+            summary = run(a.bhnsid, out, parfile, sets)
             s = summary["scalars"]
             key = a.hole_mass
             if key == "auto":

@@ -4,6 +4,7 @@
 #include "bhnsid/interfaces/eos.hpp"
 #include "bhnsid/interfaces/export.hpp"
 #include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/horizon.hpp"
 #include "bhnsid/interfaces/lapse.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "bhnsid/interfaces/tov_family.hpp"
@@ -19,5 +20,6 @@ Fluid::~Fluid() = default;
 Puncture::~Puncture() = default;
 FieldExport::~FieldExport() = default;
 Lapse::~Lapse() = default;
+ApparentHorizon::~ApparentHorizon() = default;
 
 }  // namespace bhnsid

@@ -6,6 +6,7 @@
 #include "bhnsid/core/plugin.hpp"
 #include "bhnsid/interfaces/falloff.hpp"
 #include "bhnsid/interfaces/grid.hpp"
+#include "bhnsid/interfaces/horizon.hpp"
 #include "bhnsid/interfaces/lapse.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "bhnsid/interfaces/tov_family.hpp"
@@ -48,6 +49,9 @@ void binary_scalars(Context& ctx, const Grid& grid, const Fluid& fluid, const Pu
   }
   const double omega = fluid.omega_hat() / sigma;
   const double x_c = sigma * fluid.centre()[0];
+  // The hole's irreducible (apparent-horizon) mass, when a horizon plugin found one.
+  const auto* horizon = ctx.services().find<ApparentHorizon>("horizon");
+  const double m_irr = horizon ? sigma * horizon->irreducible_mass_hat() : std::nan("");
   ctx.set_scalar("angular_momentum", j);
   ctx.set_scalar("omega", omega);
   ctx.set_scalar("omega_m0", omega * rest_mass);
@@ -62,6 +66,15 @@ void binary_scalars(Context& ctx, const Grid& grid, const Fluid& fluid, const Pu
     out.add("black hole momentum", "P^y_BH", sigma * puncture->momentum()[1],
             fmt::format("Phat^y = {:.9g}", puncture->momentum()[1]));
     out.add("separation (coordinate)", "d", x_c - sigma * puncture->position()[0], "x_C - x_BH");
+    // P_BH / (M Omega x_BH): 1 for a point mass on a circle about the origin.
+    const double x_bh = sigma * puncture->position()[0], p_bh = sigma * puncture->momentum()[1];
+    ctx.set_scalar("bh_momentum_ratio_bare", p_bh / (m_bh * omega * x_bh));
+    if (std::isfinite(m_irr)) {
+      ctx.set_scalar("bh_momentum_ratio_irreducible", p_bh / (m_irr * omega * x_bh));
+      out.add("black hole irreducible mass", "M_irr", m_irr,
+              fmt::format("P^y_BH/(M_irr Omega x_BH) = {:.6f} (bare mass: {:.6f})", p_bh / (m_irr * omega * x_bh),
+                          p_bh / (m_bh * omega * x_bh)));
+    }
   }
   out.add("star centre (density max)", "x_C", x_c, fmt::format("xhat_C = {:.9g}", fluid.centre()[0]));
   out.add("orbital angular velocity", "Omega", omega, fmt::format("Omegahat = {:.9g}", fluid.omega_hat()));
@@ -88,6 +101,11 @@ void binary_scalars(Context& ctx, const Grid& grid, const Fluid& fluid, const Pu
     ctx.set_scalar("binding_energy_puncture", (adm_mass - m_punc - m_ns) / rest_mass);
     out.add("binding energy (puncture mass)", "E_b'", (adm_mass - m_punc - m_ns) / rest_mass,
             "with M_BH chi(puncture)");
+    if (std::isfinite(m_irr)) {
+      ctx.set_scalar("binding_energy_irreducible", (adm_mass - m_irr - m_ns) / rest_mass);
+      out.add("binding energy (irreducible mass)", "E_b,irr", (adm_mass - m_irr - m_ns) / rest_mass,
+              "(M_ADM - M_irr - M_NS)/M0");
+    }
   }
 }
 
@@ -183,8 +201,10 @@ void declare(core::PluginBuilder& b) {
                    fmt::format("P^x = {:.3g}; ~0 for a binary", s.momentum_x));
      }
      ctx.log().info("physical quantities (G = c = 1, the EOS's units; hatted = coordinate / sigma):{}", summary.text());
-   }).doc("max deviations from flat space; rest_mass, adm_mass (volume inside the cube + the Bowen-York AA outside it, also given apart as adm_mass_inside, adm_mass_outside = adm_mass_outside_net_momentum (r^-4) + adm_mass_outside_remainder (r^-6)), adm_mass_falloff (Robin coefficient of chi); with a puncture chi_puncture "
-          "and puncture_mass = sigma Mhat chi(puncture); with a lapse komar_mass (1/r coefficient of alpha), adm_mass_fit (that of phi) and virial_ratio = komar_mass/adm_mass_fit; with Ahat the surface integrals momentum_surface_x/y and "
+   })
+      .after_if_present("horizon.find")
+      .doc("max deviations from flat space; rest_mass, adm_mass (volume inside the cube + the Bowen-York AA outside it, also given apart as adm_mass_inside, adm_mass_outside = adm_mass_outside_net_momentum (r^-4) + adm_mass_outside_remainder (r^-6)), adm_mass_falloff (Robin coefficient of chi); with a puncture chi_puncture "
+          "and puncture_mass = sigma Mhat chi(puncture); with a star and a hole bh_momentum_ratio_bare = P^y_BH/(M_BH Omega x_BH), and with a horizon bh_momentum_ratio_irreducible and binding_energy_irreducible = (M_ADM - M_irr - M_NS)/M0; with a lapse komar_mass (1/r coefficient of alpha), adm_mass_fit (that of phi) and virial_ratio = komar_mass/adm_mass_fit; with Ahat the surface integrals momentum_surface_x/y and "
           "angular_momentum_z; physical units");
 
   b.schedule(Bin::output, "axis", [](Context& ctx) {

@@ -12,6 +12,7 @@
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/core/plugin.hpp"
+#include "bhnsid/interfaces/horizon.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "finder.hpp"
 
@@ -21,7 +22,17 @@ namespace {
 using core::Bin;
 using core::Context;
 
+/// The "horizon" service: the last horizon's M_irr (hatted).
+class Service final : public ApparentHorizon {
+ public:
+  double irreducible_mass_hat() const override { return mass_hat; }
+  bool tracking() const override { return track; }
+  double mass_hat = std::nan("");
+  bool track = false;
+};
+
 struct State {
+  std::shared_ptr<Service> service = std::make_shared<Service>();
   std::optional<Horizon> last;
   double sigma = 1;
   std::array<double, 3> centre{};
@@ -49,6 +60,7 @@ Horizon locate(Context& ctx, State& state) {
   Horizon h = find_horizon(local, *state.basis, s);
   state.sigma = fluid ? fluid->sigma() : 1.0;
   state.centre = hole.position;
+  state.service->mass_hat = h.found ? std::sqrt(h.area_hat / (16 * std::numbers::pi)) : std::nan("");
   if (!h.found)
     throw core::RunFailure(fmt::format(
         "horizon: no apparent horizon found about the puncture (Mhat_BH = {:.6g}, started from the sphere r = {:.4g}, "
@@ -124,6 +136,11 @@ void declare(core::PluginBuilder& b) {
   b.boolean("every_iteration")
       .doc("also find the horizon after every outer iteration's solve (progress shows bh_irreducible_mass)")
       .default_value(false);
+
+  b.schedule(Bin::setup, "publish", [state](Context& ctx) {
+     state->service->track = ctx.params().boolean("every_iteration");
+     ctx.publish<ApparentHorizon>("horizon", state->service);
+   }).doc("publish the horizon service (M_irr of the last search)");
 
   b.schedule(Bin::update, "track", [state](Context& ctx) {
      if (!ctx.params().boolean("every_iteration")) return;

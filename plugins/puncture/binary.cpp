@@ -50,4 +50,12 @@ double balancing_momentum(Grid& grid, const Fluid& fluid) {
   return -s * s * grid.integrate(d, Parity{}, 0);
 }
 
+double irreducible_bare_mass(double bare_now, double irreducible_now, double target) {
+  if (!(irreducible_now > 0) || !std::isfinite(irreducible_now))
+    throw core::RunFailure(fmt::format("puncture: the apparent horizon's mass is {} after the last solve: no irreducible "
+                                       "mass to hold at the target",
+                                       irreducible_now));
+  return bare_now * target / irreducible_now;
+}
+
 }  // namespace bhnsid::puncture

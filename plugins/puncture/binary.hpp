@@ -24,6 +24,12 @@ struct HoleValues {
 HoleValues scaled_hole(const Grid& grid, const Fluid& fluid, const TovFamily& family, double mass_ratio,
                        double rest_mass);
 
+/// With mass_target = irreducible: the bare mass that brings the horizon's M_irr to `target` (hatted),
+/// from the M_irr measured with `bare_now`. M_irr is nearly proportional to Mhat_BH (M_irr ~ Mhat (1 +
+/// M_NS/(2d)) + P^2/(8 Mhat) at Newtonian order), so one ratio step per outer iteration converges
+/// with the outer loop. core::RunFailure when M_irr is not a positive number (no horizon).
+double irreducible_bare_mass(double bare_now, double irreducible_now, double target);
+
 /// Phat_y = -sigma^2 Int phi^10 j^y d^3xhat on the finest level, with the fluid's projections
 /// refreshed from the current fields and phi = puncture_phi + chi.
 double balancing_momentum(Grid& grid, const Fluid& fluid);

@@ -13,6 +13,7 @@
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/core/plugin.hpp"
+#include "bhnsid/interfaces/horizon.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
 #include "binary.hpp"
 #include "grid_points.hpp"
@@ -36,6 +37,8 @@ class Hole final : public Puncture {
     std::array<double, 3> x, p;
   };
   std::optional<Saved> before_update;
+  /// M_irr / (mu M_NS) - 1 at the last update with mass_target = irreducible (NaN before one).
+  double irreducible_error = std::nan("");
 };
 
 std::array<double, 3> vec3(const std::vector<double>& v) { return {v.at(0), v.at(1), v.at(2)}; }
@@ -52,6 +55,16 @@ void declare(core::PluginBuilder& b) {
            "0: the puncture of bare_mass, position, momentum")
       .default_value(0.0)
       .at_least(0);
+  b.keyword("mass_target", {"bare", "irreducible"})
+      .doc("with mass_ratio > 0, which mass of the hole is mu_bn M_NS: bare = the bare mass sigma Mhat_BH (the "
+           "paper's), irreducible = the apparent horizon's M_irr = sqrt(A/16 pi), Mhat_BH adjusted every outer "
+           "iteration (needs the horizon plugin with horizon.every_iteration: true)")
+      .default_value(std::string("bare"));
+  b.real("mass_tolerance")
+      .doc("with mass_target = irreducible, the loop goes on until |M_irr/(mu_bn M_NS) - 1| is at most this")
+      .default_value(1e-7)
+      .greater_than(0)
+      .at_most(0.1);
   b.real("bare_mass")
       .doc("bare mass Mhat_BH of the puncture (hatted units); required (> 0) unless mass_ratio > 0")
       .default_value(0.0)
@@ -75,6 +88,9 @@ void declare(core::PluginBuilder& b) {
                                           "> 0 for the black hole of a binary)",
                                           p.real("bare_mass")));
      if (!binary) check_off_the_points(ctx, x);
+     if (!binary && p.string("mass_target") == "irreducible")
+       throw core::InputError("puncture.mass_target = irreducible holds the hole of a binary at mu_bn M_NS: set "
+                              "puncture.mass_ratio > 0 (or mass_target: bare)");
      const auto& grid = ctx.params("grid");
      if (grid.string("symmetry") == "equatorial" && (x[2] != 0 || mom[2] != 0))
        throw core::InputError(fmt::format("puncture.position / puncture.momentum: z components {} and {} must be 0 with "
@@ -101,6 +117,12 @@ void declare(core::PluginBuilder& b) {
        throw core::InputError(fmt::format("puncture.mass_ratio = {}: the black hole of a binary needs a star: add a "
                                           "hydro plugin and the tov plugin (M_NS(M0)) to plugins",
                                           mu));
+     if (ctx.params().string("mass_target") == "irreducible") {
+       const auto* horizon = ctx.services().find<ApparentHorizon>("horizon");
+       if (!horizon || !horizon->tracking())
+         throw core::InputError("puncture.mass_target = irreducible adjusts Mhat_BH to the apparent horizon's mass every "
+                                "outer iteration: add the horizon plugin to plugins with horizon.every_iteration: true");
+     }
      const auto& grid = ctx.services().get<Grid>("grid");
      const HoleValues h = scaled_hole(grid, *fluid, *family, mu, fluid->initial_rest_mass());
      hole->mass = h.mass;
@@ -111,6 +133,7 @@ void declare(core::PluginBuilder& b) {
                     mu, hole->mass, hole->x[0], fluid->initial_rest_mass(), fluid->sigma());
    })
       .after_if_present("hydro.setup")
+      .after_if_present("horizon.publish")
       .before_if_present("equation.shift.setup")
       .doc("with mass_ratio > 0: Mhat_BH and xhat_BH from the initial star, before the shift builds its cube");
 
@@ -158,14 +181,24 @@ void declare(core::PluginBuilder& b) {
   b.schedule(Bin::update, "binary_update", [hole](Context& ctx) {
      const double mu = ctx.params().real("mass_ratio");
      const auto* fluid = ctx.services().find<Fluid>("hydro");
-     // At the converged step the star kept its sources: so does the hole (consistent output).
-     if (!(mu > 0) || !fluid || fluid->settled()) {
+     const bool irreducible = ctx.params().string("mass_target") == "irreducible";
+     const bool on_target = !irreducible || std::fabs(hole->irreducible_error) <= ctx.params().real("mass_tolerance");
+     // At the converged step the star kept its sources: so does the hole (consistent output), once
+     // its mass is on target.
+     if (!(mu > 0) || !fluid || (fluid->settled() && on_target)) {
        hole->before_update.reset();  // this update changed nothing
        return;
      }
      auto& grid = ctx.services().get<Grid>("grid");
      const double m0 = fluid->rest_mass();
      HoleValues h = scaled_hole(grid, *fluid, ctx.services().get<TovFamily>("tov_family"), mu, m0);
+     if (irreducible) {
+       // h.mass is the target mu M_NS/sigma; the horizon of the last solve measured M_irr for the current bare mass.
+       const double m_irr = ctx.services().get<ApparentHorizon>("horizon").irreducible_mass_hat();
+       hole->irreducible_error = m_irr / h.mass - 1;
+       h.mass = irreducible_bare_mass(hole->mass, m_irr, h.mass);
+       ctx.show_progress("bh_irreducible_error", hole->irreducible_error);
+     }
      h.momentum = {0.0, balancing_momentum(grid, *fluid), 0.0};
      if (!h.moved.empty()) ctx.log().info("puncture: {}", h.moved);
      ctx.show_progress("bh_position_x_hat", h.position[0]);
@@ -179,7 +212,16 @@ void declare(core::PluginBuilder& b) {
    })
       .after_if_present("hydro.outer_step")
       .doc("with mass_ratio > 0, after the star's outer step: Mhat_BH = mu_bn M_NS(M0)/sigma, xhat_BH = -xhat_C/mu_bn, "
-           "Phat_y = -sigma^2 Int phi^10 j^y; skipped at the converged step");
+           "Phat_y = -sigma^2 Int phi^10 j^y (mass_target = irreducible: Mhat_BH scaled by mu_bn M_NS/M_irr); "
+           "skipped at the converged step once the mass is on target");
+
+  b.check("mass_on_target", [hole](Context& ctx) {
+     if (ctx.params().string("mass_target") != "irreducible" || !(ctx.params().real("mass_ratio") > 0))
+       return core::Convergence{true, "the bare mass is the target"};
+     return core::Convergence{std::fabs(hole->irreducible_error) <= ctx.params().real("mass_tolerance"),
+                              fmt::format("M_irr/(mu_bn M_NS) - 1 = {:.3e} (tol {:.1e})", hole->irreducible_error,
+                                          ctx.params().real("mass_tolerance"))};
+   }).doc("with mass_target = irreducible, |M_irr/(mu_bn M_NS) - 1| <= mass_tolerance at the last update");
 
   b.schedule(Bin::retreat, "undo_update", [hole](Context& ctx) {
      // Without a binary update since the last one undone there is nothing to put back.

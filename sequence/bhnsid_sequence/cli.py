@@ -11,7 +11,7 @@ from pathlib import Path
 
 from .checks import check_runs
 from .directory import hold_lock, open_root, survey
-from .pipeline import at_targets, error_bars, minima, point_errors
+from .pipeline import at_targets, error_bars, first_law, minima, point_errors
 from .pool import run_all
 from .report import write_all
 from .runs import configurations, read_outcome, run_one
@@ -166,10 +166,10 @@ def _sequence(args, bhnsid, spec, root, configs, estimates) -> int:
         at_points = point_errors(spec, table)
     except ValueError as e:
         raise InputError(f"{spec.file}: sequence.grids: {e}")
-    figs = write_all(spec, outcomes, table, found, errors, at_points, root)
+    figs = write_all(spec, outcomes, table, found, errors, at_points, root, first_law(spec, table))
     converged = sum(o.status == "converged" for o in outcomes)
     say(f"sequence: {converged} of {len(outcomes)} configurations converged; wrote {root}/sequence.json, "
-        f"table_min_*.md/.csv, failures.md, {', '.join(figs)}")
+        f"table_min_*.md/.csv, first_law.md, failures.md, {', '.join(figs)}")
     if STOP.signum:
         return STOP.exit_code()
     return 0 if converged else 1

@@ -1,9 +1,11 @@
 """From the runs to the ISCO: per grid and xhat_A, every quantity splined against M0 at the target
-masses; per grid and target, the minima of E_b, E_b' and J along xhat_A with every quantity there;
+masses; per grid and target, the minima (turning points) of E_b, E_b', E_b with the horizon's mass
+and J along xhat_A with every quantity there; the first law dM_ADM = Omega dJ between neighbours;
 over the grids, the error model (physics-notes §6.2-6.3)."""
 import math
 from typing import Dict, List
 
+from .pn import first_law as first_law_pairs
 from .reduce import error_model, parabola_minimum, quadratic_at, spline_at
 from .runs import Outcome
 from .spec import Spec, key
@@ -21,7 +23,17 @@ QUANTITIES = {
     "sigma": "sigma",
     "P_y_BH": "bh_momentum_y",
 }
-MINIMA = {"E_b": "E_b", "E_b_puncture": "E_b_puncture", "J": "J_over_M0sq"}
+# Quantities a run may lack (no horizon plugin, or a run of an older build): tabulated at a sequence
+# point where every one of its usable runs has them. E_b_irreducible = (M_ADM - M_irr - M_NS)/M0.
+OPTIONAL = {
+    "M_ADM": "adm_mass",
+    "J": "angular_momentum",
+    "M_NS": "ns_adm_mass",
+    "M_BH_bare": "bh_bare_mass",
+    "M_irr": "bh_irreducible_mass",
+    "E_b_irreducible": "binding_energy_irreducible",
+}
+MINIMA = {"E_b": "E_b", "E_b_puncture": "E_b_puncture", "E_b_irreducible": "E_b_irreducible", "J": "J_over_M0sq"}
 
 
 def _finite(x):
@@ -60,6 +72,12 @@ def at_targets(spec: Spec, outcomes: List[Outcome]) -> Dict:
                         entry = {"reason": r.reason}
                         break
                     entry[name] = r.value
+                if "reason" not in entry:
+                    for name, scalar in OPTIONAL.items():
+                        if all(_finite(o.scalars.get(scalar)) for o in runs):
+                            r = spline_at(m0, [o.scalars[scalar] for o in runs], [t * m0_max])[0]
+                            if r.value is not None:
+                                entry[name] = r.value
                 cell[key(t)] = entry
     return {"m0_max": m0_max, "grids": out}
 
@@ -76,6 +94,9 @@ def minima(spec: Spec, table: Dict) -> Dict:
             res["points"] = len(points)
             x = [p["Omega_M0"] for p in points]
             for label, quantity in MINIMA.items():
+                if not all(quantity in p for p in points):
+                    res[label] = {"reason": f"{quantity} is not in every run (E_b with M_irr needs the horizon plugin)"}
+                    continue
                 m = parabola_minimum(x, [p[quantity] for p in points])
                 if m.x is None:
                     res[label] = {"reason": m.reason}
@@ -128,4 +149,25 @@ def point_errors(spec: Spec, table: Dict) -> Dict:
                 e = error_model([g.dx for g in spec.grids], [g.rc for g in spec.grids], [c[name] for c in cells])
                 errs[name] = e.error_bar
             out.setdefault(key(t), {})[key(xa)] = errs
+    return out
+
+
+def first_law(spec: Spec, table: Dict) -> Dict:
+    """{grid: {target: [{Omega_M0, residual}]}}: dM_ADM/(Omega dJ) - 1 between neighbouring points
+    of each constant-M0 sequence (ordered by Omega M0), where the runs give M_ADM and J. 0 for exact
+    quasi-equilibrium at fixed rest mass, hole mass and circulation (Friedman, Uryu & Shibata 2002)."""
+    out = {}
+    m0_max = table["m0_max"]
+    for grid in spec.grids:
+        for t in spec.targets:
+            points = [table["grids"][grid.name][key(xa)][key(t)] for xa in spec.x_a]
+            points = [p for p in points if "reason" not in p and "M_ADM" in p and "J" in p]
+            res = out.setdefault(grid.name, {})
+            if m0_max is None or len(points) < 2:
+                res[key(t)] = {"reason": "fewer than two sequence points with M_ADM and J"}
+                continue
+            m0 = t * m0_max
+            pairs = first_law_pairs([p["Omega_M0"] / m0 for p in points], [p["M_ADM"] for p in points],
+                                    [p["J"] for p in points])
+            res[key(t)] = [{"Omega_M0": q["omega"] * m0, "residual": q["residual"]} for q in pairs]
     return out

@@ -1,5 +1,6 @@
-"""sequence.json, the tables in the layout of the paper's Tables I and II (Markdown and CSV), and
-the figures E_b(Omega M0) and J/M0^2(Omega M0) per target mass, minima marked. Every file is
+"""sequence.json, the tables in the layout of the paper's Tables I and II (Markdown and CSV), the
+first law between neighbours, and the figures E_b(Omega M0) and J/M0^2(Omega M0) per target mass,
+minima marked, and E_b with the horizon's mass beside the 3PN point-mass curve. Every file is
 written under a fresh private name, fsynced and renamed (safe_io.write_atomic)."""
 import csv
 import io
@@ -7,6 +8,7 @@ import json
 from pathlib import Path
 
 from .paper import comparison
+from .pn import energy_per_reduced_mass
 from .pipeline import MINIMA
 from .safe_io import write_atomic, write_with
 from .spec import key
@@ -94,7 +96,69 @@ def figures(spec, table, found, errors_at_points, out_dir: Path):
     return written
 
 
-def write_all(spec, outcomes, table, found, errors, errors_at_points, out_dir: Path):
+def first_law_table(spec, law):
+    """Markdown: per target, dM_ADM/(Omega dJ) - 1 between neighbours on each grid (finest first)."""
+    names = [g.name for g in spec.grids]
+    md = ["| M0/(M0)_max | Omega M0 (pair) | " + " | ".join(names) + " |", "|" + "---|" * (len(names) + 2)]
+    for t in spec.targets:
+        cells = [law[n].get(key(t)) for n in names]
+        if not isinstance(cells[0], list):
+            md.append(f"| {key(t)} | — | " + " | ".join("—" for _ in names) + f" |  ({cells[0]['reason']})")
+            continue
+        for i, pair in enumerate(cells[0]):
+            row = []
+            for c in cells:
+                r = c[i]["residual"] if isinstance(c, list) and i < len(c) else None
+                row.append("—" if r is None else f"{r:+.3f}")
+            md.append(f"| {key(t)} | {pair['Omega_M0']:.5f} | " + " | ".join(row) + " |")
+    return "\n".join(md) + "\n"
+
+
+def post_newtonian_figure(spec, table, out_dir: Path):
+    """eb_irreducible.png: E_b = (M_ADM - M_irr - M_NS)/M0 of the finest grid against Omega M0, with
+    the 3PN point-mass E at the same M_tot Omega (M_tot = M_irr + M_NS), scaled to M0; [] when the
+    runs have no horizon mass."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    finest = spec.grids[0].name
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    drawn = False
+    for t in spec.targets:
+        pts = [table["grids"][finest][key(xa)][key(t)] for xa in spec.x_a]
+        pts = sorted((p for p in pts if "E_b_irreducible" in p and "M_irr" in p and "M_NS" in p),
+                     key=lambda p: p["Omega_M0"])
+        if not pts:
+            continue
+        m0 = t * table["m0_max"]
+        line = ax.plot([p["Omega_M0"] for p in pts], [p["E_b_irreducible"] for p in pts], "o-", ms=3,
+                       label=f"$M_0 = {key(t)}\\,(M_0)_{{max}}$")
+        m_bh, m_ns = pts[0]["M_irr"], pts[0]["M_NS"]
+        m_tot = m_bh + m_ns
+        nu, mu_red = m_bh * m_ns / m_tot ** 2, m_bh * m_ns / m_tot
+        lo, hi = pts[0]["Omega_M0"], pts[-1]["Omega_M0"]
+        xs = [lo + (hi - lo) * i / 50 for i in range(51)]
+        ys = [energy_per_reduced_mass(x * m_tot / m0, nu) * mu_red / m0 for x in xs]
+        ax.plot(xs, ys, "--", color=line[0].get_color(), lw=1)
+        drawn = True
+    if not drawn:
+        plt.close(fig)
+        return []
+    ax.plot([], [], "--", color="grey", label="3PN point masses")
+    ax.set_xlabel(r"$\Omega M_0$")
+    ax.set_ylabel(r"$(M_{ADM} - M_{irr} - M_{NS})/M_0$")
+    ax.set_title(f"$\\mu_{{bn}} = {spec.mass_ratio:g}$, {finest}")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    try:
+        write_with(out_dir / "eb_irreducible.png", lambda f: fig.savefig(f, format="png", dpi=120))
+    finally:
+        plt.close(fig)
+    return ["eb_irreducible.png"]
+
+
+def write_all(spec, outcomes, table, found, errors, errors_at_points, out_dir: Path, law=None):
     runs = [{"dir": str(o.config.relative_dir), "grid": o.config.grid.name, "x_a": o.config.x_a,
              "rho_max": o.config.rho_max, "status": o.status, "message": o.message, "seconds": o.seconds}
             for o in outcomes]
@@ -102,7 +166,7 @@ def write_all(spec, outcomes, table, found, errors, errors_at_points, out_dir: P
            "mass_ratio": spec.mass_ratio, "targets": spec.targets,
            "grids": [{"n": g.n, "dx": g.dx, "rc": g.rc} for g in spec.grids],
            "m0_max": table["m0_max"], "runs": runs, "at_targets": table["grids"], "minima": found,
-           "isco": errors, "point_errors": errors_at_points}
+           "isco": errors, "point_errors": errors_at_points, "first_law": law or {}}
     write_atomic(out_dir / "sequence.json", json.dumps(doc, indent=1) + "\n")
     for minimum in MINIMA:
         md, text = tables(spec, errors, minimum)
@@ -114,4 +178,6 @@ def write_all(spec, outcomes, table, found, errors, errors_at_points, out_dir: P
     failed = [r for r in runs if r["status"] != "converged"]
     lines = [f"| {r['dir']} | {r['status']} | {r['message'][:200]} |" for r in failed]
     write_atomic(out_dir / "failures.md", "| configuration | status | cause |\n|---|---|---|\n" + "\n".join(lines) + "\n")
-    return figures(spec, table, found, errors_at_points, out_dir)
+    if law:
+        write_atomic(out_dir / "first_law.md", first_law_table(spec, law))
+    return figures(spec, table, found, errors_at_points, out_dir) + post_newtonian_figure(spec, table, out_dir)

@@ -7,7 +7,7 @@ import unittest
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "sequence"))
-from bhnsid_sequence.pipeline import at_targets, error_bars, minima  # noqa: E402
+from bhnsid_sequence.pipeline import at_targets, error_bars, first_law, minima  # noqa: E402
 from bhnsid_sequence.runs import Outcome, configurations  # noqa: E402
 from bhnsid_sequence.spec import Grid, Spec  # noqa: E402
 
@@ -20,7 +20,10 @@ def omega_m0(xa):
     return 0.02 - 0.02 * xa
 
 
-def scalars(c, m0_shift=0.0):
+J_SLOPE = 4.0  # J = 1 + J_SLOPE w along a sequence
+
+
+def scalars(c, m0_shift=0.0, first_law_factor=1.0):
     grid_error = E_T * c.grid.dx ** 2 + E_B / c.grid.rc ** 2
     rest_mass = 0.8 * c.rho_max + 0.01 * c.x_a + m0_shift
     w = omega_m0(c.x_a)
@@ -28,7 +31,12 @@ def scalars(c, m0_shift=0.0):
             "binding_energy": 50 * (w - OMEGA0) ** 2 + EB0 + grid_error,
             "binding_energy_puncture": 50 * (w - OMEGA0) ** 2 + EB0 - 0.1,
             "j_over_m0sq": 3.0 - 10 * w, "omega_m0": w, "rho_max": c.rho_max, "x_a": c.x_a,
-            "bernoulli_constant": 0.8 + rest_mass, "sigma": 2.0 + c.x_a, "bh_momentum_y": -w}
+            "bernoulli_constant": 0.8 + rest_mass, "sigma": 2.0 + c.x_a, "bh_momentum_y": -w,
+            # With the horizon's mass: the same parabola, lower; and M_ADM, J with dM_ADM = Omega dJ at
+            # fixed M0 (Omega = w/M0): J = 1 + a w, M_ADM = 2 M0 + f a w^2/(2 M0), f = 1 obeying it.
+            "binding_energy_irreducible": 50 * (w - OMEGA0) ** 2 + EB0 - 0.05 + grid_error,
+            "angular_momentum": 1 + J_SLOPE * w,
+            "adm_mass": 2 * rest_mass + first_law_factor * J_SLOPE * w * w / (2 * rest_mass)}
 
 
 class Pipeline(unittest.TestCase):
@@ -59,6 +67,30 @@ class Pipeline(unittest.TestCase):
                                                E_B / fine.rc ** 2), places=12)
         # Omega M0 does not depend on the grid: no error at all.
         self.assertLess(isco["Omega_M0"]["error"], 1e-12)
+
+    def test_turning_point_with_the_horizon_mass_and_the_first_law(self):
+        # E_b with M_irr has its minimum at the same Omega M0; the first law holds between every pair
+        # of neighbours (to the splines' accuracy in 1/M0), and a sequence with three times the
+        # Omega dJ shows a residual of 2.
+        found = minima(self.spec, at_targets(self.spec, self.outcomes))
+        for g in self.spec.grids:
+            self.assertAlmostEqual(found[g.name]["0.6"]["E_b_irreducible"]["Omega_M0"], OMEGA0, places=12)
+        law = first_law(self.spec, at_targets(self.spec, self.outcomes))
+        for g in self.spec.grids:
+            pairs = law[g.name]["0.6"]
+            self.assertEqual(len(pairs), 4)
+            for p in pairs:
+                self.assertLess(abs(p["residual"]), 1e-4)
+        broken = [Outcome(c, "converged", "", scalars(c, first_law_factor=3.0)) for c in configurations(self.spec)]
+        for p in first_law(self.spec, at_targets(self.spec, broken))["n256_dx0.015"]["0.6"]:
+            self.assertAlmostEqual(p["residual"], 2.0, delta=1e-3)
+
+    def test_without_the_horizon_mass_its_minimum_has_a_reason(self):
+        for o in self.outcomes:
+            del o.scalars["binding_energy_irreducible"]
+        found = minima(self.spec, at_targets(self.spec, self.outcomes))
+        self.assertIn("horizon plugin", found["n256_dx0.015"]["0.6"]["E_b_irreducible"]["reason"])
+        self.assertAlmostEqual(found["n256_dx0.015"]["0.6"]["E_b"]["Omega_M0"], OMEGA0, places=12)
 
     def test_a_failed_run_is_left_out_and_too_few_is_a_reason(self):
         for o in self.outcomes:
