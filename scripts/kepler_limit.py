@@ -14,12 +14,12 @@ Usage: scripts/kepler_limit.py OUTDIR [--n 288 --dx 0.0225] [--only komar_virial
 A run whose OUTDIR/NAME/summary.json exists is not run again.
 """
 import argparse
-import json
 import os
-import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from run_once import run_once  # noqa: E402
 EXE = os.path.join(ROOT, "build", "bin", "bhnsid")  # --bhnsid: another build (a copy left alone while runs go on)
 # (rho_max, x_A): d/R = 2 (1 + x_A)/(1 - x_A) ~ 5.8, 6.8, 6.0 gives d/M_tot ~ 20, 40, 80 for the TOV
 # stars of these central densities (M_NS = 0.1270, 0.0862, 0.0427; R_iso = 0.873, 1.020, 1.146).
@@ -29,17 +29,6 @@ LAPSES = {
     "komar_static": ("kepler_komar.yaml", ["lapse_komar.condition=static"]),
     "paper": ("kepler_limit.yaml", []),
 }
-
-
-def run(exe, out, parfile, sets):
-    if not os.path.exists(os.path.join(out, "summary.json")):
-        cmd = [exe, "run", os.path.join(ROOT, "parfiles", parfile), "--output", out, "--force"]
-        for s in sets:
-            cmd += ["--set", s]
-        with open(out + ".log", "w") as log:
-            subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT)
-    with open(os.path.join(out, "summary.json")) as f:
-        return json.load(f)
 
 
 def main():
@@ -61,7 +50,7 @@ def main():
             out = os.path.join(a.outdir, f"{lapse}_rho{rho}")
             sets = [f"grid.n={a.n}", f"grid.dx={a.dx}", f"hydro_corotating.rho_max={rho}",
                     f"hydro_corotating.x_a={x_a}", "run.max_iterations=120"] + extra
-            summary = run(a.bhnsid, out, parfile, sets)
+            summary = run_once(a.bhnsid, out, parfile, sets)
             s = summary["scalars"]
             key = a.hole_mass
             if key == "auto":

@@ -45,29 +45,38 @@ Horizon find_horizon(const LocalFields& f, const SurfaceBasis& basis, const Find
   const SurfaceTables tables(basis);
   const std::size_t modes = basis.modes().size();
   const double r0 = s.initial_radius > 0 ? s.initial_radius : 0.5 * f.hole().mass;
-  std::vector<double> a = basis.sphere(r0);
+  std::vector<double> a = s.start.size() == modes ? s.start : basis.sphere(r0);
   Eigen::VectorXd r, shifted;
   Eigen::MatrixXd jac;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
   const double y00 = 1.0 / std::sqrt(4 * std::numbers::pi);
   std::string why;
+  // A chord method: the Jacobian (a residual per coefficient) is kept while the steps shrink fast,
+  // and rebuilt when they do not; a search from the last horizon then costs one Jacobian.
+  bool fresh = false;
+  double last_step = HUGE_VAL;
   for (out.iterations = 1; out.iterations <= s.max_iterations; ++out.iterations) {
     if (!residual(f, tables, a, r, why)) {
       out.failure = why;
       return out;
     }
     const double mean = a[0] * y00;
-    jac.resize(r.size(), static_cast<Eigen::Index>(modes));
-    const double eps = 1e-7 * mean;
-    for (std::size_t m = 0; m < modes; ++m) {
-      std::vector<double> b = a;
-      b[m] += eps;
-      if (!residual(f, tables, b, shifted, why)) {
-        out.failure = why;
-        return out;
+    if (!fresh) {
+      jac.resize(r.size(), static_cast<Eigen::Index>(modes));
+      const double eps = 1e-7 * mean;
+      for (std::size_t m = 0; m < modes; ++m) {
+        std::vector<double> b = a;
+        b[m] += eps;
+        if (!residual(f, tables, b, shifted, why)) {
+          out.failure = why;
+          return out;
+        }
+        jac.col(static_cast<Eigen::Index>(m)) = (shifted - r) / eps;
       }
-      jac.col(static_cast<Eigen::Index>(m)) = (shifted - r) / eps;
+      qr.compute(jac);
+      fresh = true;
     }
-    Eigen::VectorXd step = jac.colPivHouseholderQr().solve(-r);
+    Eigen::VectorXd step = qr.solve(-r);
     // A step larger than a fifth of the radius is shortened: the expansion is far from linear there.
     const double largest = step.cwiseAbs().maxCoeff() * y00 * std::sqrt(static_cast<double>(modes));
     if (largest > 0.2 * mean) step *= 0.2 * mean / largest;
@@ -77,10 +86,13 @@ Horizon find_horizon(const LocalFields& f, const SurfaceBasis& basis, const Find
       out.failure = "the Newton step is not finite";
       return out;
     }
-    if (step.cwiseAbs().maxCoeff() * y00 <= s.tolerance * mean) {
+    const double size = step.cwiseAbs().maxCoeff() * y00;
+    if (size <= s.tolerance * mean) {
       out.found = true;
       break;
     }
+    if (size > 0.1 * last_step) fresh = false;  // slower than a tenfold decrease: a new Jacobian
+    last_step = size;
   }
   if (!out.found) {
     out.failure = fmt::format("not converged in horizon.max_iterations = {} Newton steps (last max |phi^2 Theta| r = {:.3e})",

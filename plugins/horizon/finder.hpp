@@ -17,6 +17,7 @@ struct FinderSettings {
   double initial_radius = 0;  ///< hatted; 0: Mhat_BH/2, the Schwarzschild value
   double tolerance = 1e-10;   ///< largest Newton step, relative to the mean radius
   int max_iterations = 40;
+  std::vector<double> start;  ///< coefficients to start from (the last horizon); empty: the sphere
 };
 
 struct Horizon {

@@ -37,6 +37,7 @@ struct State {
   double sigma = 1;
   std::array<double, 3> centre{};
   std::optional<SurfaceBasis> basis;
+  double last_mass = 0;  ///< Mhat_BH of the last horizon found
 };
 
 Horizon locate(Context& ctx, State& state) {
@@ -50,8 +51,13 @@ Horizon locate(Context& ctx, State& state) {
   s.tolerance = ctx.params().real("tolerance");
   s.max_iterations = static_cast<int>(ctx.params().integer("max_iterations"));
   s.initial_radius = ctx.params().real("initial_radius");
-  // Start from the last horizon when there is one: the outer iteration moves it little.
   const double r0 = s.initial_radius > 0 ? s.initial_radius : 0.5 * hole.mass;
+  // Start from the last horizon when there is one (the outer iteration moves it little, and by the
+  // bare mass's ratio: scaled with it), else from the sphere r0.
+  if (state.last && state.last->found && state.basis && state.basis->l_max() == s.l_max && state.last_mass > 0) {
+    s.start = state.last->coefficients;
+    for (double& c : s.start) c *= hole.mass / state.last_mass;
+  }
   double half = ctx.params().real("search_radius");
   if (!(half > 0)) half = 2.0 * r0;
   const int ahat = grid.has_field(fields::ahat) ? grid.field_id(fields::ahat) : -1;
@@ -60,6 +66,7 @@ Horizon locate(Context& ctx, State& state) {
   Horizon h = find_horizon(local, *state.basis, s);
   state.sigma = fluid ? fluid->sigma() : 1.0;
   state.centre = hole.position;
+  if (h.found) state.last_mass = hole.mass;
   state.service->mass_hat = h.found ? std::sqrt(h.area_hat / (16 * std::numbers::pi)) : std::nan("");
   if (!h.found)
     throw core::RunFailure(fmt::format(
@@ -151,8 +158,12 @@ void declare(core::PluginBuilder& b) {
       .doc("with every_iteration: the horizon of the last solve, before the hole is moved");
 
   b.schedule(Bin::analysis, "find", [state](Context& ctx) {
-     state->last.reset();
-     state->last = locate(ctx, *state);
+     try {
+       state->last = locate(ctx, *state);
+     } catch (...) {
+       state->last.reset();  // no surface of earlier fields in horizon.tsv
+       throw;
+     }
      report(ctx, *state);
      const Horizon& h = *state->last;
      ctx.log().info("horizon: M_irr = {:.9g}, area {:.9g}, coordinate radius {:.6g} .. {:.6g} (mean {:.6g}), spin {:.3e}; "

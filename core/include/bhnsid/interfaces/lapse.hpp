@@ -28,7 +28,7 @@ class Lapse : public core::Service {
   virtual void update(Grid& grid, int level) const = 0;
   /// A grid field (every level) that is positive everywhere, regular at the puncture and equal to
   /// alpha phi up to the puncture's own term: the momentum equation's default weight (its
-  /// vector-potential ansatz takes any positive weight, physics-notes §2.3).
+  /// vector-potential ansatz takes any positive weight: plugins/momentum/README.md).
   virtual std::string regular_part() const = 0;
 };
 
