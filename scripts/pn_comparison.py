@@ -49,12 +49,17 @@ def main():
                                                  f"hydro_corotating.x_a={xa}", "puncture.mass_ratio=1"])
                 statuses.append(s["status"])
                 v = s["scalars"]
+                if s["status"] != "converged":
+                    break
                 m_bh, m_ns = v[hole], v["ns_adm_mass"]
                 m_tot = m_bh + m_ns
                 mu_red = m_bh * m_ns / m_tot
                 energy.append((v["adm_mass"] - m_bh - m_ns) / mu_red)
                 m_omega.append(m_tot * v["omega"])
                 nus.append(m_bh * m_ns / m_tot ** 2)
+            if len(energy) < len(GRIDS):
+                print(f"| {lapse} | {xa} | — | — | — | — | {', '.join(statuses)}: {s.get('message', '')[:160]} |")
+                continue
             nu = nus[0]
             e = error_model([g[1] for g in GRIDS], [g[0] * g[1] / 2 for g in GRIDS], energy)
             w = error_model([g[1] for g in GRIDS], [g[0] * g[1] / 2 for g in GRIDS], m_omega)
