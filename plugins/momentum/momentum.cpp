@@ -83,10 +83,11 @@ void MomentumEquation::refresh_weight(int level) const {
 
 Sources MomentumEquation::sources(int level) const {
   const Level& lv = grid_.level(level);
-  refresh_weight(level);
   Sources s;
   s.chi = grid_.data(chi_, 0, level);
-  s.weight = grid_.data(weight_, 0, level);
+  // The sweeps read the lapse's regular part where it lives (no copy per sweep); wvec_weight holds
+  // the finest level's copy for the IRE, refreshed with the curvature.
+  s.weight = grid_.data(weight_kind_ == Weight::lapse ? weight_source_ : weight_, 0, level);
   s.puncture_phi = grid_.data(puncture_phi_, 0, level);
   s.sy = lv.sy;
   s.sz = lv.sz;

@@ -40,7 +40,7 @@ class MomentumEquation final : public EllipticEquation {
 
  private:
   Sources sources(int level) const;
-  /// q on `level` from its source (a copy of the lapse's regular part), ghosts included.
+  /// wvec_weight on `level` from its source (a copy of the lapse's regular part), ghosts included.
   void refresh_weight(int level) const;
 
   Grid& grid_;

@@ -23,8 +23,9 @@ inline constexpr const char* aa = "aa_hat";            ///< hamiltonian: sum_ij 
 inline constexpr const char* eta = "eta";              ///< lapse (the paper's): eta = alpha phi (eq. maxslice_hat)
 inline constexpr const char* shift = "beta";           ///< shift: beta^i (3 components, time-odd)
 inline constexpr const char* wvec = "wvec";            ///< momentum: the vector potential W^i (3 components, time-odd)
-/// momentum: the positive weight q of the vector-potential ansatz Zhat^ij = chi^7/(2 q) (LW)^ij, every
-/// level (the paper has q = eta, eq. mom_ansatz_hat; any positive q solves the momentum constraint exactly).
+/// momentum: the positive weight q of the vector-potential ansatz Zhat^ij = chi^7/(2 q) (LW)^ij (the paper
+/// has q = eta, eq. mom_ansatz_hat; any positive q solves the momentum constraint exactly); the finest
+/// level holds the q of the last curvature fill, what the IRE reconstructs K_ij with.
 inline constexpr const char* ansatz_weight = "wvec_weight";
 /// momentum: Ahat^ij = Ahat_BY^ij + Zhat^ij, 6 components xx, xy, xz, yy, yz, zz (time-odd), on every
 /// level; it also fills aa_hat from it. Both are refreshed before each field solve.
