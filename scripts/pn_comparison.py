@@ -2,8 +2,10 @@
 """The binding energy of the binary against the 3PN point-mass energy, for docs/lapse.md.
 
 mu_bn = 1 binaries of the quick start's star (Gamma = 2, rho_max = 0.1) at two separations, chosen
-so that M_tot Omega is near 0.02 and 0.04 (xhat_A = 0.28 and 0.08), each on the three grids of the
-paper's error model at half its resolution ((128, 0.03), (64, 0.06), (80, 0.03)), with
+so that M_tot Omega is near 0.02 and 0.04 (xhat_A = 0.28 and 0.08), and a mu_bn = 3 binary of a more
+compact star (rho_max = 0.15, xhat_A = 0.6), which reaches M_tot Omega = 0.04 outside its Roche
+lobe under the full pull; each on the three grids of the paper's error model at half its resolution
+((128, 0.03), (64, 0.06), (80, 0.03)), with
   lapse_komar: parfiles/binary_komar.yaml (M_irr held at M_NS): E_b = (M_ADM - M_irr - M_NS)/mu_red,
   the paper's lapse: parfiles/sequences/binary.yaml (bare mass mu_bn M_NS): E_b' = (M_ADM - M_punc -
   M_NS)/mu_red, its puncture-mass binding energy,
@@ -25,7 +27,7 @@ from bhnsid_sequence.pn import energy_per_reduced_mass  # noqa: E402
 from bhnsid_sequence.reduce import error_model  # noqa: E402
 
 GRIDS = [(128, 0.03), (64, 0.06), (80, 0.03)]  # finest first, as the error model takes them
-X_A = [0.28, 0.08]
+CONFIGS = [(1, 0.1, 0.28), (1, 0.1, 0.08), (3, 0.15, 0.6)]  # (mu_bn, rho_max, xhat_A)
 LAPSES = {
     "lapse_komar": ("binary_komar.yaml", "bh_irreducible_mass"),
     "paper": ("sequences/binary.yaml", "bh_puncture_mass"),
@@ -38,15 +40,15 @@ def main():
     p.add_argument("--bhnsid", default=os.path.join(ROOT, "build", "bin", "bhnsid"))
     a = p.parse_args()
     os.makedirs(a.outdir, exist_ok=True)
-    print("| lapse | xhat_A | M_tot Omega | E/mu_red (bhnsid) | E/mu (3PN) | difference | status |")
-    print("|---|---|---|---|---|---|---|")
+    print("| lapse | mu_bn | rho_max | xhat_A | M_tot Omega | E/mu_red (bhnsid) | E/mu (3PN) | difference | status |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for lapse, (parfile, hole) in LAPSES.items():
-        for xa in X_A:
+        for mu, rho, xa in CONFIGS:
             energy, m_omega, statuses, nus = [], [], [], []
             for n, dx in GRIDS:
-                out = os.path.join(a.outdir, f"{lapse}_xa{xa}_n{n}_dx{dx}")
-                s = run_once(a.bhnsid, out, parfile, [f"grid.n={n}", f"grid.dx={dx}", "hydro_corotating.rho_max=0.1",
-                                                 f"hydro_corotating.x_a={xa}", "puncture.mass_ratio=1"])
+                out = os.path.join(a.outdir, f"{lapse}_mu{mu}_rho{rho}_xa{xa}_n{n}_dx{dx}")
+                s = run_once(a.bhnsid, out, parfile, [f"grid.n={n}", f"grid.dx={dx}", f"hydro_corotating.rho_max={rho}",
+                                                 f"hydro_corotating.x_a={xa}", f"puncture.mass_ratio={mu}"])
                 statuses.append(s["status"])
                 v = s["scalars"]
                 if s["status"] != "converged":
@@ -58,13 +60,13 @@ def main():
                 m_omega.append(m_tot * v["omega"])
                 nus.append(m_bh * m_ns / m_tot ** 2)
             if len(energy) < len(GRIDS):
-                print(f"| {lapse} | {xa} | — | — | — | — | {', '.join(statuses)}: {s.get('message', '')[:160]} |")
+                print(f"| {lapse} | {mu} | {rho} | {xa} | — | — | — | — | {', '.join(statuses)}: {s.get('message', '')[:160]} |")
                 continue
             nu = nus[0]
             e = error_model([g[1] for g in GRIDS], [g[0] * g[1] / 2 for g in GRIDS], energy)
             w = error_model([g[1] for g in GRIDS], [g[0] * g[1] / 2 for g in GRIDS], m_omega)
             pn = energy_per_reduced_mass(w.q_exact, nu)
-            print(f"| {lapse} | {xa} | {w.q_exact:.5f} ± {w.error_bar:.1g} | {e.q_exact:.5f} ± {e.error_bar:.1g} | "
+            print(f"| {lapse} | {mu} | {rho} | {xa} | {w.q_exact:.5f} ± {w.error_bar:.1g} | {e.q_exact:.5f} ± {e.error_bar:.1g} | "
                   f"{pn:.5f} | {(e.q_exact - pn) / abs(pn):+.1%} | {', '.join(statuses)} |")
 
 

@@ -153,9 +153,12 @@ def point_errors(spec: Spec, table: Dict) -> Dict:
 
 
 def first_law(spec: Spec, table: Dict) -> Dict:
-    """{grid: {target: [{Omega_M0, residual}]}}: dM_ADM/(Omega dJ) - 1 between neighbouring points
-    of each constant-M0 sequence (ordered by Omega M0), where the runs give M_ADM and J. 0 for exact
-    quasi-equilibrium at fixed rest mass, hole mass and circulation (Friedman, Uryu & Shibata 2002)."""
+    """{grid: {target: [{Omega_M0, residual, x_a}]}}: dM_ADM/(Omega dJ) - 1 between neighbouring
+    points of each constant-M0 sequence (ordered by Omega M0; x_a names the pair's two xhat_A), where
+    the runs give M_ADM and J. 0 for exact quasi-equilibrium at fixed rest mass, hole mass and
+    circulation (Friedman, Uryu & Shibata 2002). With three grids, "error_model" holds per target the
+    pairs every grid has, through the paper's error model (the residual is a grid quantity like any
+    other): the finest grid's value, its error bar and the extrapolated Q_e."""
     out = {}
     m0_max = table["m0_max"]
     for grid in spec.grids:
@@ -167,7 +170,33 @@ def first_law(spec: Spec, table: Dict) -> Dict:
                 res[key(t)] = {"reason": "fewer than two sequence points with M_ADM and J"}
                 continue
             m0 = t * m0_max
+            points.sort(key=lambda p: p["Omega_M0"])
             pairs = first_law_pairs([p["Omega_M0"] / m0 for p in points], [p["M_ADM"] for p in points],
                                     [p["J"] for p in points])
-            res[key(t)] = [{"Omega_M0": q["omega"] * m0, "residual": q["residual"]} for q in pairs]
+            res[key(t)] = [{"Omega_M0": q["omega"] * m0, "residual": q["residual"],
+                            "x_a": [key(a["x_a"]), key(b["x_a"])]} for q, a, b in zip(pairs, points, points[1:])]
+    if len(spec.grids) == 3:
+        out["error_model"] = _first_law_error_model(spec, out)
+    return out
+
+
+def _first_law_error_model(spec: Spec, law: Dict) -> Dict:
+    out = {}
+    for t in spec.targets:
+        cells = [law[g.name].get(key(t)) for g in spec.grids]
+        if not all(isinstance(c, list) for c in cells):
+            out[key(t)] = []
+            continue
+        by_pair = [{tuple(p["x_a"]): p for p in c} for c in cells]
+        rows = []
+        for pair in cells[0]:
+            label = tuple(pair["x_a"])
+            q = [b.get(label, {}).get("residual") for b in by_pair]
+            if not all(_finite(v) for v in q):
+                continue
+            e = error_model([g.dx for g in spec.grids], [g.rc for g in spec.grids], q)
+            rows.append({"x_a": list(label), "Omega_M0": pair["Omega_M0"], "per_grid": q, "value": q[0],
+                         "error": e.error_bar, "q_exact": e.q_exact, "e_truncation": e.e_truncation,
+                         "e_boundary": e.e_boundary})
+        out[key(t)] = rows
     return out

@@ -97,20 +97,31 @@ def figures(spec, table, found, errors_at_points, out_dir: Path):
 
 
 def first_law_table(spec, law):
-    """Markdown: per target, dM_ADM/(Omega dJ) - 1 between neighbours on each grid (finest first)."""
+    """Markdown: per target, dM_ADM/(Omega dJ) - 1 between neighbours on each grid (finest first),
+    pairs matched by their two xhat_A; with three grids the error model's Q_e and the finest grid's
+    error bar."""
     names = [g.name for g in spec.grids]
-    md = ["| M0/(M0)_max | Omega M0 (pair) | " + " | ".join(names) + " |", "|" + "---|" * (len(names) + 2)]
+    model = law.get("error_model")
+    extra = ["finest ± error bar", "Q_e (error model)"] if model is not None else []
+    md = ["| M0/(M0)_max | xhat_A pair | Omega M0 (pair) | " + " | ".join(names + extra) + " |",
+          "|" + "---|" * (len(names) + len(extra) + 3)]
     for t in spec.targets:
         cells = [law[n].get(key(t)) for n in names]
         if not isinstance(cells[0], list):
-            md.append(f"| {key(t)} | — | " + " | ".join("—" for _ in names) + f" |  ({cells[0]['reason']})")
+            md.append(f"| {key(t)} | — | — | " + " | ".join("—" for _ in names + extra) + f" |  ({cells[0]['reason']})")
             continue
-        for i, pair in enumerate(cells[0]):
+        fits = {tuple(r["x_a"]): r for r in (model or {}).get(key(t), [])}
+        for pair in cells[0]:
+            label = tuple(pair["x_a"])
             row = []
             for c in cells:
-                r = c[i]["residual"] if isinstance(c, list) and i < len(c) else None
+                match = [p for p in c if tuple(p["x_a"]) == label] if isinstance(c, list) else []
+                r = match[0]["residual"] if match else None
                 row.append("—" if r is None else f"{r:+.3f}")
-            md.append(f"| {key(t)} | {pair['Omega_M0']:.5f} | " + " | ".join(row) + " |")
+            if model is not None:
+                f = fits.get(label)
+                row += ["—", "—"] if f is None else [f"{f['value']:+.3f} ± {f['error']:.3f}", f"{f['q_exact']:+.3f}"]
+            md.append(f"| {key(t)} | {label[0]}–{label[1]} | {pair['Omega_M0']:.5f} | " + " | ".join(row) + " |")
     return "\n".join(md) + "\n"
 
 

@@ -8,6 +8,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "sequence"))
 from bhnsid_sequence.pipeline import at_targets, error_bars, first_law, minima  # noqa: E402
+from bhnsid_sequence.report import first_law_table  # noqa: E402
 from bhnsid_sequence.runs import Outcome, configurations  # noqa: E402
 from bhnsid_sequence.spec import Grid, Spec  # noqa: E402
 
@@ -84,6 +85,27 @@ class Pipeline(unittest.TestCase):
         broken = [Outcome(c, "converged", "", scalars(c, first_law_factor=3.0)) for c in configurations(self.spec)]
         for p in first_law(self.spec, at_targets(self.spec, broken))["n256_dx0.015"]["0.6"]:
             self.assertAlmostEqual(p["residual"], 2.0, delta=1e-3)
+
+    def test_the_first_law_residual_through_the_error_model(self):
+        # A residual carrying e_t dx^2 + e_b / rc^2 on each grid (M_ADM's Omega dJ part scaled by
+        # 1 + that) must extrapolate back to 0, pair by pair, matched by their xhat_A.
+        def law_error(g):
+            return 30.0 * g.dx ** 2 + 0.4 / g.rc ** 2
+        outcomes = [Outcome(c, "converged", "", scalars(c, first_law_factor=1.0 + law_error(c.grid)))
+                    for c in configurations(self.spec)]
+        law = first_law(self.spec, at_targets(self.spec, outcomes))
+        rows = law["error_model"]["0.6"]
+        self.assertEqual([r["x_a"] for r in rows], [p["x_a"] for p in law["n256_dx0.015"]["0.6"]])
+        self.assertEqual(len(rows), 4)
+        fine = self.spec.grids[0]
+        for r in rows:
+            self.assertAlmostEqual(r["value"], law_error(fine), delta=1e-4)
+            self.assertLess(abs(r["q_exact"]), 1e-4)
+            self.assertAlmostEqual(r["e_truncation"], 30.0, delta=0.5)
+            self.assertAlmostEqual(r["e_boundary"], 0.4, delta=1e-3)
+        md = first_law_table(self.spec, law)
+        self.assertIn("Q_e (error model)", md)
+        self.assertIn("| 0.3–0.2 |", md)
 
     def test_without_the_horizon_mass_its_minimum_has_a_reason(self):
         for o in self.outcomes:
