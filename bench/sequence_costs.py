@@ -52,7 +52,7 @@ def grid_costs(grid_dir: Path) -> dict:
         seconds = t.get("total", 0.0)
         total += seconds
         solve += t.get("multigrid.solve", 0.0)
-        outer += t.get("hydro_corotating.outer_step", 0.0)
+        outer += t.get("star.outer_step", 0.0)
         start = start_of(summary.get("provenance", {}).get("command_line", ""), grid_dir.name)
         entry = by_start.setdefault(start, {"runs": 0, "converged": 0, "seconds": 0.0, "steps": []})
         entry["runs"] += 1

@@ -48,8 +48,8 @@ def main():
         points = []
         for rho, x_a in CONFIGS:
             out = os.path.join(a.outdir, f"{lapse}_rho{rho}")
-            sets = [f"grid.n={a.n}", f"grid.dx={a.dx}", f"hydro_corotating.rho_max={rho}",
-                    f"hydro_corotating.x_a={x_a}", "run.max_iterations=120"] + extra
+            sets = [f"grid.n={a.n}", f"grid.dx={a.dx}", f"star.rho_max={rho}",
+                    f"star.x_a={x_a}", "run.max_iterations=120"] + extra
             summary = run_once(a.bhnsid, out, parfile, sets)
             s = summary["scalars"]
             key = a.hole_mass

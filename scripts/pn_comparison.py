@@ -51,8 +51,8 @@ def main():
             energy, m_omega, statuses, nus = [], [], [], []
             for n, dx in GRIDS:
                 out = os.path.join(a.outdir, f"{lapse}_mu{mu}_rho{rho}_xa{xa}_n{n}_dx{dx}")
-                s = run_once(a.bhnsid, out, parfile, [f"grid.n={n}", f"grid.dx={dx}", f"hydro_corotating.rho_max={rho}",
-                                                 f"hydro_corotating.x_a={xa}", f"puncture.mass_ratio={mu}"] + extra)
+                s = run_once(a.bhnsid, out, parfile, [f"grid.n={n}", f"grid.dx={dx}", f"star.rho_max={rho}",
+                                                 f"star.x_a={xa}", f"puncture.mass_ratio={mu}"] + extra)
                 statuses.append(s["status"])
                 v = s["scalars"]
                 if s["status"] != "converged":

@@ -66,12 +66,12 @@ def main():
             dx = 0.12 * 32 / n
             print(f"running n = {n}, dx = {dx:g}", file=sys.stderr)
             runs[(n, dx)] = run(args.parfile, os.path.join(tmp, f"r{n}"),
-                                [f"grid.n={n}", f"grid.dx={dx}", f"hydro_corotating.rho_max={args.rho_max}"])
+                                [f"grid.n={n}", f"grid.dx={dx}", f"star.rho_max={args.rho_max}"])
             n *= 2
         for n in (128, 256):
             print(f"running n = {n}, dx = 0.06", file=sys.stderr)
             runs[(n, 0.06)] = run(args.parfile, os.path.join(tmp, f"b{n}"),
-                                  [f"grid.n={n}", "grid.dx=0.06", f"hydro_corotating.rho_max={args.rho_max}"])
+                                  [f"grid.n={n}", "grid.dx=0.06", f"star.rho_max={args.rho_max}"])
     names = ["sigma", "bernoulli_constant", "adm_mass", "adm_mass_falloff", "rest_mass", "chi_centre", "alpha_centre"]
     print("| quantity | TOV | " + " | ".join(f"err dx={dx:g}" for (n, dx) in runs if n * dx / 2 == 1.92) + " | ratios |")
     print("|---|---|" + "---|" * (sum(1 for (n, dx) in runs if n * dx / 2 == 1.92) + 1))

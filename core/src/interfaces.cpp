@@ -3,6 +3,7 @@
 #include "bhnsid/interfaces/elliptic.hpp"
 #include "bhnsid/interfaces/eos.hpp"
 #include "bhnsid/interfaces/export.hpp"
+#include "bhnsid/interfaces/flow.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/horizon.hpp"
 #include "bhnsid/interfaces/lapse.hpp"
@@ -17,6 +18,7 @@ EllipticEquation::~EllipticEquation() = default;
 Eos::~Eos() = default;
 TovFamily::~TovFamily() = default;
 Fluid::~Fluid() = default;
+Flow::~Flow() = default;
 Puncture::~Puncture() = default;
 FieldExport::~FieldExport() = default;
 Lapse::~Lapse() = default;

@@ -40,13 +40,13 @@ Masses masses(const Grid& grid, const Inputs& in) {
   const double* aa = field(grid, fields::aa);
   const double* matter = in.matter ? field(grid, fields::matter_energy) : nullptr;
   if (in.matter && !matter)
-    throw core::RunFailure("diagnostics: a fluid without the matter_energy field (rho_E); the hydro plugin registers it");
+    throw core::RunFailure("diagnostics: a fluid without the matter_energy field (rho_E); the star registers it");
   const double sigma2 = in.sigma * in.sigma;
   // Every point but the ghost plane is written below (integrate reads no ghost); uninitialised,
   // so that the pages are first touched by the parallel loop instead of a serial zero fill.
   const auto energy = std::make_unique_for_overwrite<double[]>(lv.size);
   // Per row, the matter switch compile-time, so that the loop vectorises; rho_E is 0 outside the
-  // matter (the hydro plugin writes it so).
+  // matter (the star writes it so).
   auto densities = [&](auto with_matter) {
     for_stored_points(lv, [&](std::ptrdiff_t p) {
       const double phi = (punc ? punc[p] : 0.0) + chi[p];

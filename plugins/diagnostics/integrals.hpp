@@ -1,6 +1,6 @@
 #pragma once
 // The global quantities of a solution (physics-notes §1.4 and §6.1), in physical (k = 1) units
-// (the rest mass M0 is the hydro plugin's, Fluid::rest_mass, since it needs W):
+// (the rest mass M0 is the star's, Fluid::rest_mass, since it needs W):
 //   M_ADM = sigma [Mhat_BH + Int (phi^-7 AA/(16 pi) + sigma^2 phi^5 rho_E) d^3xhat]   (volume form)
 //   M_ADM = sigma [Mhat_BH + 2 <rhat (chi - 1)>_faces]                    (1/r falloff of chi)
 // The falloff form averages rhat (chi - 1), rhat = |xhat - centre|, over the outer faces with

@@ -123,7 +123,7 @@ void declare(core::PluginBuilder& b) {
 
   b.schedule(Bin::analysis, "masses", [](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");
-     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* fluid = ctx.services().find<Fluid>("star");
      const auto* puncture = ctx.services().find<Puncture>("puncture");
      Inputs in;
      in.sigma = fluid ? fluid->sigma() : 1.0;

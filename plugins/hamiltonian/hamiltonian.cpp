@@ -38,7 +38,7 @@ OuterBoundary HamiltonianEquation::boundary() const {
 
 std::vector<std::string> HamiltonianEquation::coefficients() const {
   // aa_hat is not restricted: its owner (momentum) fills every level, the Bowen-York part analytically.
-  // The projections are not either: the hydro plugin forms them on each level from its restricted inputs.
+  // The projections are not either: the star forms them on each level from its restricted inputs.
   if (!fluid_) return {};
   return fluid_->source_inputs();
 }

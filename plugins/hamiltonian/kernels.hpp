@@ -15,7 +15,7 @@ namespace bhnsid::hamiltonian {
 struct Sources {
   const double* puncture_phi = nullptr;
   const double* aa = nullptr;
-  MatterSources matter;     ///< rho_E from the hydro plugin, refreshed before the sweep
+  MatterSources matter;     ///< rho_E from the star, refreshed before the sweep
   double matter_scale = 1;  ///< 1 except in the IRE sensitivity test (one coefficient times 1 + eps)
 };
 
@@ -36,7 +36,7 @@ struct HamiltonianTerm {
     const double aa = s.aa[idx];
     double value = 0.125 * aa * inv7, slope = -0.875 * aa * inv7 * inv_phi;
     if constexpr (Matter) {
-      // rho_E is 0 outside the matter (the hydro plugin writes it so), so no select is needed.
+      // rho_E is 0 outside the matter (the star writes it so), so no select is needed.
       const double phi2 = phi * phi;
       const double c = 2.0 * std::numbers::pi * s.matter.sigma2 * s.matter_scale * s.matter.energy[idx] * (phi2 * phi2);
       value += c * phi;

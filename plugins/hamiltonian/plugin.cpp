@@ -60,7 +60,7 @@ void declare(core::PluginBuilder& b) {
     }
   });
 
-  b.real("initial_chi").doc("starting value of chi everywhere (a hydro plugin may overwrite it with its own guess)").default_value(1.0).greater_than(0);
+  b.real("initial_chi").doc("starting value of chi everywhere (the star may overwrite it with its own guess)").default_value(1.0).greater_than(0);
   b.real("test_matter_scale")
       .doc("TEST ONLY: multiplies the matter term 2 pi sigma^2 phi^5 rho_E by this factor, so that tests can "
            "show that a one-coefficient error is detected; 1 for physics")
@@ -68,7 +68,7 @@ void declare(core::PluginBuilder& b) {
 
   b.schedule(Bin::setup, "setup", [state](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");
-     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* fluid = ctx.services().find<Fluid>("star");
      const auto* puncture = ctx.services().find<Puncture>("puncture");
      state->equation = std::make_shared<HamiltonianEquation>(grid, fluid, puncture, ctx.params().real("test_matter_scale"));
      ctx.publish<EllipticEquation>("equation.hamiltonian", state->equation);

@@ -12,7 +12,7 @@ namespace bhnsid::horizon {
 Horizon locate(core::Context& ctx, State& state) {
   const auto& grid = ctx.services().get<Grid>("grid");
   const auto& puncture = ctx.services().get<Puncture>("puncture");
-  const auto* fluid = ctx.services().find<Fluid>("hydro");
+  const auto* fluid = ctx.services().find<Fluid>("star");
   Hole hole{puncture.bare_mass(), puncture.position(), puncture.momentum()};
   FinderSettings s;
   s.l_max = static_cast<int>(ctx.params().integer("l_max"));

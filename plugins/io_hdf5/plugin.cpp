@@ -43,7 +43,7 @@ void write(Context& ctx) {
   eos.eos = ctx.services().find<Eos>("eos");
   for (const auto& [capability, plugin] : record.implementations)
     if (capability == "eos") eos.plugin = plugin;
-  const auto* fluid = ctx.services().find<Fluid>("hydro");
+  const auto* fluid = ctx.services().find<Fluid>("star");
   const double sigma = fluid ? fluid->sigma() : 1.0;
   std::vector<const FieldExport*> exports;
   for (const FieldExport* e : ctx.services().all<FieldExport>()) exports.push_back(e);

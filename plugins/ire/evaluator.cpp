@@ -87,6 +87,19 @@ Field copy(const Grid& grid, const PointSet& set, const char* name, int comp, in
   return f;
 }
 
+// A finest-level array (no ghosts read) copied onto the points of a set.
+Field copy_array(const Grid& grid, const PointSet& set, const double* src, int z_indices) {
+  Field f = make_compact(set, z_indices, false);
+  const Level& lv = grid.finest();
+  const auto count = static_cast<std::ptrdiff_t>(set.points.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t q = 0; q < count; ++q) {
+    const auto& p = set.points[static_cast<std::size_t>(q)];
+    f.v[static_cast<std::size_t>(q)] = src[lv.at(p[0], p[1], p[2])];
+  }
+  return f;
+}
+
 // Calls fn(i, j, k) for every point of the set, in parallel.
 template <class Fn>
 void for_needed(const PointSet& n, Fn&& fn) {
@@ -118,8 +131,9 @@ void for_points(const Box& b, int margin, Fn&& fn) {
 
 struct Geometry {
   Field chi, weight;  // the solution's regular part of phi and the momentum ansatz's weight q, at the outer points
-  Field alpha, rho_e, trace_s, lorentz, enthalpy, rho0;
+  Field alpha, rho_e, trace_s, first_integral, enthalpy, rho0;
   std::array<Field, 3> beta_up, beta_down, j_up, dalpha;
+  std::array<Field, 3> mass_flux;  // rho0 W phi^6 (alpha v^i - B^i) at the outer points (irrotational flow)
   std::array<Field, 6> gamma, k_down, k_up, sigma;
   std::array<std::array<Field, 6>, 3> christoffel;  // [k][pair(i, j)] = Gamma^k_ij
   Field k_trace;
@@ -145,14 +159,13 @@ void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, const N
   g.alpha = copy(grid, set, fields::alpha, 0, 0);
   for (int p = 0; p < 6; ++p) g.gamma[static_cast<std::size_t>(p)] = make_compact(set, (p == 2 || p == 4) ? 1 : 0);
   for (int a = 0; a < 3; ++a) g.beta_down[static_cast<std::size_t>(a)] = make_compact(set, zcount(a), false);
-  g.lorentz = make_compact(inner, 0);
   g.rho0 = copy(grid, inner, fields::rho0, 0, 0);
+  // The flow's first integral, whose difference from C_B is the Bernoulli residual.
+  g.first_integral = in.first_integral ? copy_array(grid, inner, in.first_integral, 0) : make_compact(inner, 0);
   g.enthalpy = copy(grid, inner, fields::enthalpy, 0, 0);
-  // The matter projections are the hydro plugin's (its kinematics, refreshed from the solution
+  // The matter projections are the star's (its kinematics, refreshed from the solution
   // before the evaluation); the IRE checks the field equations they source, not the fluid's motion.
-  Field press;
   if (in.fluid) {
-    press = copy(grid, inner, fields::press, 0, 0);
     g.rho_e = copy(grid, inner, fields::matter_energy, 0, 0);
     g.trace_s = copy(grid, inner, fields::matter_trace, 0, 0);
     for (int a = 0; a < 3; ++a) g.j_up[static_cast<std::size_t>(a)] = copy(grid, inner, fields::matter_momentum, a, zcount(a));
@@ -160,6 +173,17 @@ void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, const N
     g.rho_e = make_compact(inner, 0);
     g.trace_s = make_compact(inner, 0);
     for (int a = 0; a < 3; ++a) g.j_up[static_cast<std::size_t>(a)] = make_compact(inner, zcount(a));
+  }
+  // The rest-mass flux of a flow that solves continuity: its ingredients at the outer points.
+  Field rho0_out, lorentz;
+  std::array<Field, 3> velocity;
+  if (in.lorentz) {
+    rho0_out = copy(grid, set, fields::rho0, 0, 0);
+    lorentz = copy_array(grid, set, in.lorentz, 0);
+    for (int a = 0; a < 3; ++a) {
+      velocity[static_cast<std::size_t>(a)] = copy_array(grid, set, in.velocity[a], zcount(a));
+      g.mass_flux[static_cast<std::size_t>(a)] = make_compact(set, zcount(a), false);
+    }
   }
   for_needed(set, [&](int i, int j, int k) {
     const std::size_t at = b.at(i, j, k);
@@ -174,13 +198,16 @@ void fill_point_fields(const Grid& grid, const Box& b, const Inputs& in, const N
     const double psi4 = ph * ph * ph * ph;
     g.gamma[0].v[p] = g.gamma[3].v[p] = g.gamma[5].v[p] = psi4;
     for (int a = 0; a < 3; ++a) g.beta_down[static_cast<std::size_t>(a)].v[p] = psi4 * g.beta_up[static_cast<std::size_t>(a)].v[p];
-    if (inner.slot[at] < 0) return;
-    const auto q = static_cast<std::size_t>(inner.slot[at]);
-    g.lorentz.v[q] = 1;
-    if (!in.fluid) return;
-    // W from rho_E = rho0 h W^2 - P, for any perfect fluid (the Bernoulli residual's W).
-    const double rh = g.rho0.v[q] * g.enthalpy.v[q];
-    if (rh > 0) g.lorentz.v[q] = std::sqrt((g.rho_e.v[q] + press.v[q]) / rh);
+    if (in.lorentz) {
+      // rho0 W phi^6 (alpha v^i - beta^i - Omegahat xi^i), xi = (-y, x, 0) (physics-notes-irrotational §2.1).
+      const double xi[3] = {-(b.y0 + b.dx * j), b.x0 + b.dx * i, 0.0};
+      const double weight = rho0_out.v[p] > 0 ? rho0_out.v[p] * lorentz.v[p] * psi4 * ph * ph : 0.0;
+      for (int a = 0; a < 3; ++a) {
+        const auto c = static_cast<std::size_t>(a);
+        g.mass_flux[c].v[p] =
+            weight * (g.alpha.v[p] * velocity[c].v[p] - g.beta_up[c].v[p] - in.omega_hat * xi[a]);
+      }
+    }
   });
 }
 
@@ -491,14 +518,18 @@ Result evaluate(const Grid& grid, const Inputs& in) {
   const std::vector<std::uint8_t> band = in.fluid ? surface_band(grid, b, in.surface_cells) : std::vector<std::uint8_t>(b.size(), 0);
 
   const double sigma2 = in.sigma * in.sigma;
-  const bool bernoulli = in.fluid && std::isfinite(in.bernoulli);
+  const bool bernoulli = in.fluid && std::isfinite(in.bernoulli) && in.first_integral;
+  const bool continuity = in.fluid && in.lorentz;
 
   Result out;
   out.equations = {"hamiltonian", "momentum", "lapse", "shift"};
   if (bernoulli) out.equations.push_back("bernoulli");
+  const std::size_t continuity_at = out.equations.size();
+  if (continuity) out.equations.push_back("continuity");
   const std::size_t ne = out.equations.size();
   // Per equation and region (0 away: vacuum; 1 surface; 2 puncture; 3 inside the star away from its
-  // surface), accumulated per thread, then summed. Bernoulli lives in the star: its "away" is 3.
+  // surface), accumulated per thread, then summed. Bernoulli and continuity live in the star: their
+  // "away" is 3.
   std::vector<std::array<Accumulator, 4>> total(ne);
   const int jaxis = static_cast<int>(std::lround(-b.y0 / b.dx));
   const int kaxis = static_cast<int>(std::lround(-b.z0 / b.dx));
@@ -516,25 +547,31 @@ Result evaluate(const Grid& grid, const Inputs& in) {
           // points, so the margin is 2 of its spacings: the same points at every level (a margin of
           // 2 fine points added a shell of 12,000 points at the second level of the paper example).
           if (!b.inside(i, j, k, 2 * in.stride)) {
-            if (on_axis) axis_rows[static_cast<std::size_t>(i)] = fmt::format("{:.10g}\tnan\tnan\tnan\tnan\tnan\tnan\tnan\tnan\tnan\t-\n", b.x0 + b.dx * i);
+            if (on_axis) axis_rows[static_cast<std::size_t>(i)] = fmt::format("{:.10g}\tnan\tnan\tnan\tnan\tnan\tnan\tnan\tnan\tnan\tnan\t-\n", b.x0 + b.dx * i);
             continue;
           }
-          const std::size_t p = b.at(i, j, k), po = static_cast<std::size_t>(need.outer.slot[p]),
-                            pi = static_cast<std::size_t>(need.inner.slot[p]);
+          const std::size_t p = b.at(i, j, k), pi = static_cast<std::size_t>(need.inner.slot[p]);
           const PointResiduals r = residuals_at(b, need, g, sigma2, i, j, k);
           const bool matter = g.rho0.v[pi] > 0;
-          const double bern = bernoulli && matter ? g.enthalpy.v[pi] * g.alpha.v[po] / g.lorentz.v[pi] - in.bernoulli : nan;
+          const double bern = bernoulli && matter ? g.first_integral.v[pi] - in.bernoulli : nan;
+          // The divergence of the rest-mass flux by the IRE's own D0 (the solver's is a cut-cell flux form).
+          double mass = nan;
+          if (continuity && matter) {
+            mass = 0;
+            for (int a = 0; a < 3; ++a) mass += d0(b, g.mass_flux[static_cast<std::size_t>(a)], a, i, j, k);
+          }
           const int region = near.contains(i, j, k) ? 2 : band[p] ? 1 : matter ? 3 : 0;
           local[0][static_cast<std::size_t>(region)].add(&r.hamiltonian, 1);
           local[1][static_cast<std::size_t>(region)].add(r.momentum, 3);
           local[2][static_cast<std::size_t>(region)].add(&r.lapse, 1);
           local[3][static_cast<std::size_t>(region)].add(r.shift, 3);
           if (bernoulli && matter) local[4][static_cast<std::size_t>(region == 3 ? 0 : region)].add(&bern, 1);
+          if (continuity && matter) local[continuity_at][static_cast<std::size_t>(region == 3 ? 0 : region)].add(&mass, 1);
           if (on_axis)
             axis_rows[static_cast<std::size_t>(i)] =
-                fmt::format("{:.10g}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\n", b.x0 + b.dx * i, number(r.hamiltonian),
+                fmt::format("{:.10g}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\n", b.x0 + b.dx * i, number(r.hamiltonian),
                             number(r.momentum[0]), number(r.momentum[1]), number(r.momentum[2]), number(r.lapse),
-                            number(r.shift[0]), number(r.shift[1]), number(r.shift[2]), number(bern),
+                            number(r.shift[0]), number(r.shift[1]), number(r.shift[2]), number(bern), number(mass),
                             region == 2 ? "puncture" : region == 1 ? "surface" : region == 3 ? "star" : "away");
         }
 #pragma omp critical
@@ -554,7 +591,7 @@ Result evaluate(const Grid& grid, const Inputs& in) {
     out.star[out.equations[e]] = total[e][3].norms();
   }
   out.axis_table =
-      "# x\thamiltonian\tmomentum_x\tmomentum_y\tmomentum_z\tlapse\tshift_x\tshift_y\tshift_z\tbernoulli\tregion\n";
+      "# x\thamiltonian\tmomentum_x\tmomentum_y\tmomentum_z\tlapse\tshift_x\tshift_y\tshift_z\tbernoulli\tcontinuity\tregion\n";
   for (const std::string& row : axis_rows) out.axis_table += row;
   return out;
 }

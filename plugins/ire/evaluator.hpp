@@ -4,7 +4,7 @@
 // hatted coordinates and evaluates the covariant equations with generic Christoffel symbols, Ricci
 // tensor and covariant derivatives, by centred differences of its own: first derivatives D0, second
 // derivatives D0(D0 u) (the solver uses D+D-). It shares no code with the equation plugins;
-// the matter projections it reads are the hydro plugin's (refreshed from the solution).
+// the matter projections it reads are the star's (refreshed from the solution).
 #include <array>
 #include <map>
 #include <string>
@@ -18,6 +18,14 @@ struct Inputs {
   double sigma = 1;
   bool fluid = false;       ///< rho0, press, enthalpy and the matter projections present and meaningful
   double bernoulli = 0;     ///< C_B; NaN when the fluid has none (no Bernoulli residual)
+  double omega_hat = 0;     ///< Omegahat of the helical symmetry (B = beta + Omegahat xi)
+  /// The flow's first integral at every finest-level point (Flow::first_integral; C_B at a solution
+  /// where rho0 > 0): the Bernoulli residual is its difference from C_B. Null: no Bernoulli residual.
+  const double* first_integral = nullptr;
+  /// W and v^i of the flow on the finest level (Flow::velocity), for the continuity residual
+  /// d_i[rho0 W phi^6 (alpha v^i - B^i)]; null: the flow's kinematics make that flux vanish identically.
+  const double* lorentz = nullptr;
+  const double* velocity[3] = {nullptr, nullptr, nullptr};
   bool puncture = false;
   double bare_mass = 0;
   std::array<double, 3> position{}, momentum{};
@@ -33,9 +41,9 @@ struct Norms {
 
 /// Residual norms per equation and region, and the x-axis table.
 struct Result {
-  std::vector<std::string> equations;           ///< hamiltonian, momentum, lapse, shift, bernoulli
+  std::vector<std::string> equations;           ///< hamiltonian, momentum, lapse, shift, bernoulli, continuity
   /// away: in vacuum, away from the puncture and the star's surface band; star: inside the star away
-  /// from its band (for Bernoulli, away is the star's interior and star is empty).
+  /// from its band (for Bernoulli and continuity, away is the star's interior and star is empty).
   std::map<std::string, Norms> away, surface, puncture, star;
   std::string axis_table;                       ///< ire_axis.tsv
 };

@@ -11,6 +11,7 @@
 #include "bhnsid/core/context.hpp"
 #include "bhnsid/core/plugin.hpp"
 #include "bhnsid/core/residual_report.hpp"
+#include "bhnsid/interfaces/flow.hpp"
 #include "bhnsid/interfaces/grid.hpp"
 #include "bhnsid/interfaces/lapse.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
@@ -25,6 +26,11 @@ using core::Context;
 struct State {
   Result result;
   bool evaluated = false;
+};
+
+/// The flow's fields the evaluator reads, on the finest level.
+struct FlowFields {
+  std::vector<double> first_integral, lorentz, velocity[3];
 };
 
 // Fewer points inside the star make no norm worth an order (a point moves in or out of the band
@@ -82,7 +88,7 @@ void declare(core::PluginBuilder& b) {
 
   b.schedule(Bin::analysis, "residuals", [state](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");
-     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* fluid = ctx.services().find<Fluid>("star");
      // The projections of the solution itself (the last sweep's may lag it by one sweep).
      if (fluid && grid.has_field(fields::matter_energy)) fluid->update_sources(grid, 0);
      if (const auto* lapse = ctx.services().find<Lapse>("lapse")) lapse->update(grid, 0);
@@ -91,6 +97,28 @@ void declare(core::PluginBuilder& b) {
      in.sigma = fluid ? fluid->sigma() : 1.0;
      in.fluid = fluid != nullptr && grid.has_field(fields::matter_energy);
      in.bernoulli = fluid ? fluid->bernoulli_constant() : std::nan("");
+     // The first integral and the velocity are the flow's: how the fluid moves is its business; the
+     // IRE checks that the solution obeys them (Bernoulli) and conserves rest mass (continuity).
+     FlowFields flow_fields;
+     if (auto* flow = ctx.services().find<Flow>("flow"); flow && in.fluid) {
+       const FlowConstants c{fluid->sigma(), fluid->omega_hat(), fluid->bernoulli_constant()};
+       const std::size_t size = grid.finest().size;
+       in.omega_hat = c.omega_hat;
+       flow_fields.first_integral.assign(size, 0.0);
+       flow->first_integral(grid, c, flow_fields.first_integral.data());
+       in.first_integral = flow_fields.first_integral.data();
+       if (flow->solves_continuity()) {
+         flow_fields.lorentz.assign(size, 1.0);
+         double* v[3];
+         for (int a = 0; a < 3; ++a) {
+           flow_fields.velocity[a].assign(size, 0.0);
+           v[a] = flow_fields.velocity[a].data();
+           in.velocity[a] = v[a];
+         }
+         flow->velocity(grid, c, flow_fields.lorentz.data(), v);
+         in.lorentz = flow_fields.lorentz.data();
+       }
+     }
      if (puncture) {
        in.puncture = true;
        in.bare_mass = puncture->bare_mass();
@@ -113,7 +141,7 @@ void declare(core::PluginBuilder& b) {
        const bool star_resolved = star.points >= min_star_points;
        const Norms away = star_resolved ? merged(r.away.at(e), star) : r.away.at(e);
        // Reported at every level (validate takes the equations from the first), judged never.
-       if (e != "bernoulli" && in.fluid) {
+       if (e != "bernoulli" && e != "continuity" && in.fluid) {
          const std::string in_star = e + "_in_star";
          ctx.set_scalar(key(in_star, "l2"), star.l2);
          ctx.set_scalar(key(in_star, "max"), star.max);
@@ -137,7 +165,8 @@ void declare(core::PluginBuilder& b) {
                       in.puncture ? fmt::format("; near the puncture: max {:.3e}", r.puncture.at(e).max) : "");
      }
    }).doc("the residuals of the Hamiltonian and momentum constraints, maximal slicing (d_t K), minimal distortion "
-          "(D^j Sigma_ij) and, in the star, Bernoulli (h alpha/lorentz - C_B), from generic finite-difference geometry; "
+          "(D^j Sigma_ij) and, in the star, Bernoulli (the flow's first integral - C_B) and, for a flow that solves it, "
+          "rest-mass conservation d_i[rho0 W phi^6 (alpha v^i - B^i)], from generic finite-difference geometry; "
           "L2 (rms) and max norms away from the puncture and the star's surface, and in those regions apart");
 
   b.schedule(Bin::output, "axis", [state](Context& ctx) {

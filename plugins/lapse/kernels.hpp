@@ -17,7 +17,7 @@ struct Sources {
   const double* chi = nullptr;
   const double* puncture_phi = nullptr;
   const double* aa = nullptr;
-  MatterSources matter;     ///< rho_E and S from the hydro plugin, refreshed before the sweep
+  MatterSources matter;     ///< rho_E and S from the star, refreshed before the sweep
   double matter_scale = 1;  ///< 1 except in the IRE sensitivity test
 };
 
@@ -34,7 +34,7 @@ struct LapseTerm {
     const double inv4 = (inv_phi * inv_phi) * (inv_phi * inv_phi);
     double k = 0.875 * s.aa[idx] * inv4 * inv4;
     if constexpr (Matter) {
-      // The projections are 0 outside the matter (the hydro plugin writes them so).
+      // The projections are 0 outside the matter (the star writes them so).
       const MatterSources& m = s.matter;
       const double phi2 = phi * phi;
       k += 2.0 * std::numbers::pi * m.sigma2 * s.matter_scale * (m.energy[idx] + 2.0 * m.trace[idx]) * (phi2 * phi2);

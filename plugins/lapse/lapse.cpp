@@ -21,7 +21,7 @@ OuterBoundary LapseEquation::boundary() const {
 
 std::vector<std::string> LapseEquation::coefficients() const {
   // aa_hat is not restricted: its owner (momentum) fills every level, the Bowen-York part analytically.
-  // The projections are not either: the hydro plugin forms them on each level from its restricted inputs.
+  // The projections are not either: the star forms them on each level from its restricted inputs.
   if (!fluid_) return {};
   return fluid_->source_inputs();
 }

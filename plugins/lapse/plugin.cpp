@@ -33,7 +33,7 @@ void declare(core::PluginBuilder& b) {
     }
   });
 
-  b.real("initial_eta").doc("starting value of eta = alpha phi everywhere (a hydro plugin may overwrite it)").default_value(1.0).greater_than(0);
+  b.real("initial_eta").doc("starting value of eta = alpha phi everywhere (the star may overwrite it)").default_value(1.0).greater_than(0);
   b.real("test_matter_scale")
       .doc("TEST ONLY: multiplies the matter term 2 pi sigma^2 phi^4 (rho_E + 2S) by this factor, so that tests "
            "can show that a one-coefficient error is detected; 1 for physics")
@@ -41,7 +41,7 @@ void declare(core::PluginBuilder& b) {
 
   b.schedule(Bin::setup, "setup", [](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");
-     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* fluid = ctx.services().find<Fluid>("star");
      const auto* puncture = ctx.services().find<Puncture>("puncture");
      ctx.publish<EllipticEquation>("equation.lapse",
                                    std::make_shared<LapseEquation>(grid, fluid, puncture, ctx.params().real("test_matter_scale")));

@@ -20,7 +20,7 @@ struct Sources {
   const double* chi = nullptr;
   const double* puncture_phi = nullptr;
   const double* aa = nullptr;
-  MatterSources matter;  ///< rho_E and S from the hydro plugin, refreshed before the sweep
+  MatterSources matter;  ///< rho_E and S from the star, refreshed before the sweep
   double c = 1;          ///< the strength of the singular term (1: static; the virial value otherwise)
 };
 

@@ -31,7 +31,7 @@ struct State {
 };
 
 std::array<double, 3> centre_of(const Context& ctx) {
-  return falloff_centre(ctx.services().find<Fluid>("hydro"), ctx.services().find<Puncture>("puncture"));
+  return falloff_centre(ctx.services().find<Fluid>("star"), ctx.services().find<Puncture>("puncture"));
 }
 
 void declare(core::PluginBuilder& b) {
@@ -62,13 +62,13 @@ void declare(core::PluginBuilder& b) {
       .greater_than(0)
       .at_most(0.1);
   b.real("initial_eta_regular")
-      .doc("starting value of the regular part eta~ everywhere (a hydro plugin may overwrite it)")
+      .doc("starting value of the regular part eta~ everywhere (the star may overwrite it)")
       .default_value(1.0)
       .greater_than(0);
 
   b.schedule(Bin::setup, "setup", [state](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");
-     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* fluid = ctx.services().find<Fluid>("star");
      const auto& puncture = ctx.services().get<Puncture>("puncture");
      ctx.publish<EllipticEquation>("equation.lapse", std::make_shared<KomarEquation>(grid, fluid, puncture, state->strength));
      auto lapse = std::make_shared<KomarLapse>(state->strength);

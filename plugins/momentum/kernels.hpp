@@ -6,7 +6,7 @@
 // with Zhat = chi^7/(2 q) (LW) and q > 0 the ansatz's weight (the paper's q is eta = alpha phi; any
 // positive q solves the momentum constraint, so a lapse that changes sign keeps a positive q),
 //   (LW)^ij = d_i W^j + d_j W^i - (2/3) delta_ij d_k W^k,
-//   phi = puncture_phi + chi,  J^i = j^i, the hydro plugin's momentum density.
+//   phi = puncture_phi + chi,  J^i = j^i, the star's momentum density.
 // They plug into core's stencil::vector_residual/vector_relax (vector_sweep.hpp) as the Lower term
 // N^i: it reads W only through centred first differences (never W at the point itself), and J
 // depends on the fluid, chi, alpha and the shift but not on W, so the point Jacobian stays
@@ -24,7 +24,7 @@ struct Sources {
   const double* chi = nullptr;
   const double* weight = nullptr;  ///< q > 0
   const double* puncture_phi = nullptr;
-  MatterSources matter;           ///< j^i from the hydro plugin, refreshed before the sweep
+  MatterSources matter;           ///< j^i from the star, refreshed before the sweep
   std::ptrdiff_t sy = 0, sz = 0;  ///< strides of the level (chi and q are differenced in place)
   double inv_2h = 0;              ///< 1/(2h) of the level
   double source_scale = 1;        ///< 1 except in tests (test_source_scale)
@@ -44,7 +44,7 @@ struct Sym6 {
 }
 
 /// N^i = -(LW)^ij (d_j q/q - 7 d_j chi/chi) - 16 pi sigma^2 q phi^10 chi^-7 J^i at one point.
-/// Matter = false drops the J term (no fluid); j^i is 0 outside the matter (the hydro plugin writes
+/// Matter = false drops the J term (no fluid); j^i is 0 outside the matter (the star writes
 /// it so).
 template <bool Matter>
 struct MomentumLower {

@@ -70,7 +70,7 @@ OuterBoundary MomentumEquation::boundary() const {
 
 std::vector<std::string> MomentumEquation::coefficients() const {
   // chi and the lapse's regular part are unknowns (the solver keeps them on every level)
-  // and puncture_phi is analytic on every level, so only the hydro plugin's inputs are restricted.
+  // and puncture_phi is analytic on every level, so only the star's inputs are restricted.
   if (!fluid_) return {};
   return fluid_->source_inputs();
 }

@@ -49,7 +49,7 @@ void declare(core::PluginBuilder& b) {
   b.require("grid");  // the position is checked against grid.n and grid.dx
 
   b.real("mass_ratio")
-      .doc("mu_bn = M_BH / M_NS; > 0: the black hole of a binary with the star of the hydro plugin, its bare mass, "
+      .doc("mu_bn = M_BH / M_NS; > 0: the black hole of a binary with the star of the star, its bare mass, "
            "position and momentum set from the star every outer iteration (Mhat_BH = mu_bn M_NS(M0)/sigma, "
            "xhat_BH = -xhat_C/mu_bn, Phat_y = -sigma^2 Int phi^10 j^y; bare_mass and position are then not used); "
            "0: the puncture of bare_mass, position, momentum")
@@ -111,7 +111,7 @@ void declare(core::PluginBuilder& b) {
   b.schedule(Bin::setup, "binary_start", [hole](Context& ctx) {
      const double mu = ctx.params().real("mass_ratio");
      if (!(mu > 0)) return;
-     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* fluid = ctx.services().find<Fluid>("star");
      const auto* family = ctx.services().find<TovFamily>("tov_family");
      if (!fluid || !family)
        throw core::InputError(fmt::format("puncture.mass_ratio = {}: the black hole of a binary needs a star: add a "
@@ -132,14 +132,14 @@ void declare(core::PluginBuilder& b) {
                     "(M0 = {:.9g}, sigma = {:.9g})",
                     mu, hole->mass, hole->x[0], fluid->initial_rest_mass(), fluid->sigma());
    })
-      .after_if_present("hydro.setup")
+      .after_if_present("star.setup")
       .after_if_present("horizon.publish")
       .before_if_present("equation.shift.setup")
       .doc("with mass_ratio > 0: Mhat_BH and xhat_BH from the initial star, before the shift builds its cube");
 
   b.schedule(Bin::initial, "binary_initial", [hole](Context& ctx) {
      const double mu = ctx.params().real("mass_ratio");
-     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* fluid = ctx.services().find<Fluid>("star");
      if (!(mu > 0) || !fluid) return;
      // The star's initial data may have changed sigma (the hole shrinks it, sigma_0 = R_iso/(Rhat
      // phi_ext^2)): the first field solve must see Mhat_BH = mu M_NS/sigma with that sigma.
@@ -151,7 +151,7 @@ void declare(core::PluginBuilder& b) {
      ctx.log().info("puncture of the binary: Mhat_BH = {:.9g}, xhat_BH = {:.9g} for the initial sigma = {:.9g}", hole->mass,
                     hole->x[0], fluid->sigma());
    })
-      .after_if_present("hydro.initial_data")
+      .after_if_present("star.initial_data")
       .doc("with mass_ratio > 0: the hole again from the initial star, whose initial data set sigma_0");
 
   // INITIAL places the hole for the initial star; a resume puts back where the loop had moved it.
@@ -180,7 +180,7 @@ void declare(core::PluginBuilder& b) {
 
   b.schedule(Bin::update, "binary_update", [hole](Context& ctx) {
      const double mu = ctx.params().real("mass_ratio");
-     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* fluid = ctx.services().find<Fluid>("star");
      const bool irreducible = ctx.params().string("mass_target") == "irreducible";
      const bool on_target = !irreducible || std::fabs(hole->irreducible_error) <= ctx.params().real("mass_tolerance");
      // At the converged step the star kept its sources: so does the hole (consistent output), once
@@ -210,7 +210,7 @@ void declare(core::PluginBuilder& b) {
      hole->x = h.position;
      hole->p = h.momentum;
    })
-      .after_if_present("hydro.outer_step")
+      .after_if_present("star.outer_step")
       .doc("with mass_ratio > 0, after the star's outer step: Mhat_BH = mu_bn M_NS(M0)/sigma, xhat_BH = -xhat_C/mu_bn, "
            "Phat_y = -sigma^2 Int phi^10 j^y (mass_target = irreducible: Mhat_BH scaled by mu_bn M_NS/M_irr); "
            "skipped at the converged step once the mass is on target");
@@ -235,7 +235,7 @@ void declare(core::PluginBuilder& b) {
    }).doc("the hole's mass, position and momentum back to before its last binary update");
 
   b.schedule(Bin::analysis, "report", [hole](Context& ctx) {
-     const auto* fluid = ctx.services().find<Fluid>("hydro");
+     const auto* fluid = ctx.services().find<Fluid>("star");
      const double sigma = fluid ? fluid->sigma() : 1.0;
      ctx.set_scalar("bh_bare_mass", sigma * hole->mass);
      ctx.set_scalar("bh_position_x", sigma * hole->x[0]);

@@ -6,7 +6,7 @@
 //       + 2 phi^-6 Ahat^ij d_j alpha + 16 pi sigma^2 alpha phi^4 J^i,
 //   phi = Mhat/(2 r) + chi,  dphi_i = -Mhat n_i/(2 r^2) + d_i chi  (the puncture's part analytic),
 //   alpha from the "lapse" service (refreshed before each sweep), d_i alpha by centred differences,
-//   J^i = j^i, the hydro plugin's momentum density (refreshed before each sweep).
+//   J^i = j^i, the star's momentum density (refreshed before each sweep).
 // The right-hand side enters core's vector sweep (stencil::vector_residual/relax) as the lower-order
 // term N = -RHS of L(beta) = lap beta + (1/3) grad div beta + N = 0.
 #include <cmath>
@@ -103,7 +103,7 @@ struct ShiftLower {
       // core's sweep does not allow for in its fixed point Jacobian -(20/3)/h^2: that derivative,
       // 16 pi sigma^2 phi^4 rho0 h W^2 (~ 10 for a neutron star), is tiny next to (20/3)/h^2 (~ 7e3
       // at h = 0.03), and J is refreshed before every sweep, so the converged solution is exact.
-      // j^i is 0 outside the matter (the hydro plugin writes it so).
+      // j^i is 0 outside the matter (the star writes it so).
       const MatterSources& m = s.matter;
       const double phi2 = phi * phi;
       const double k = 16.0 * std::numbers::pi * m.sigma2 * alpha * phi2 * phi2;

@@ -122,7 +122,7 @@ OuterBoundary ShiftEquation::boundary() const {
 std::vector<std::string> ShiftEquation::coefficients() const {
   // chi is hamiltonian's unknown and alpha is formed on each level from the lapse's; ahat is filled on every level by its
   // owner and the puncture's terms are computed in the kernel, so none of them is restricted.
-  // The projections are formed by the hydro plugin on each level from its restricted inputs.
+  // The projections are formed by the star on each level from its restricted inputs.
   if (!fluid_) return {};
   return fluid_->source_inputs();
 }

@@ -38,7 +38,7 @@ def configurations(spec: Spec) -> List[Config]:
 def settings(spec: Spec, c: Config) -> Dict[str, str]:
     s = dict(spec.overrides)
     s.update({"grid.n": str(c.grid.n), "grid.dx": repr(c.grid.dx), "puncture.mass_ratio": repr(spec.mass_ratio),
-              "hydro_corotating.x_a": repr(c.x_a), "hydro_corotating.rho_max": repr(c.rho_max),
+              "star.x_a": repr(c.x_a), "star.rho_max": repr(c.rho_max),
               "run.threads": str(spec.threads)})
     return s
 

@@ -29,7 +29,7 @@ MAX_CONFIGURATIONS = 5000
 MAX_THREADS = 1024
 # What the sequence sets in every run itself; a `set:` of one of these would be overridden.
 OWN_KEYS = {"grid.n": "sequence.grids", "grid.dx": "sequence.grids", "puncture.mass_ratio": "sequence.mass_ratio",
-            "hydro_corotating.x_a": "sequence.x_a", "hydro_corotating.rho_max": "sequence.rho_max",
+            "star.x_a": "sequence.x_a", "star.rho_max": "sequence.rho_max",
             "run.threads": "sequence.threads"}
 _SET_KEY = re.compile(r"[A-Za-z0-9_]+(\.[A-Za-z0-9_]+)+")
 

@@ -31,12 +31,12 @@ ldd "$work/example" | grep -q "$prefix/lib/libbhnsid_reader.so" || fail "the exa
 # (b) The installed solver, moved away from the build: its plugins come from <prefix>/lib/bhnsid.
 plugins=$("$prefix/bin/bhnsid" plugins) || fail "installed bhnsid plugins failed"
 echo "$plugins" | head -5
-for p in grid multigrid puncture hamiltonian io_hdf5 hydro_corotating; do
+for p in grid multigrid puncture hamiltonian io_hdf5 star flow_corotating; do
   echo "$plugins" | grep -q "$p" || fail "installed bhnsid does not list $p"
 done
 echo "$plugins" | grep -q "$build/lib/bhnsid" && fail "installed bhnsid found plugins in the build tree"
 echo "$plugins" | grep -q "^  $prefix/lib/bhnsid$" || fail "installed bhnsid does not search $prefix/lib/bhnsid"
-[ -f "$prefix/lib/bhnsid/hydro_corotating.plot.py" ] || fail "no hydro_corotating.plot.py installed"
+[ -f "$prefix/lib/bhnsid/star.plot.py" ] || fail "no star.plot.py installed"
 ls "$prefix/lib/bhnsid" | grep -q test && fail "a test-only plugin was installed"
 ldd "$prefix/bin/bhnsid" | grep -q "libbhnsid_core.so => $prefix/bin/../lib/libbhnsid_core.so" || fail "bhnsid does not find the installed core"
 

@@ -36,7 +36,7 @@ from pathlib import Path
 args = sys.argv[1:]
 out = Path(args[args.index("--output") + 1])
 sets = dict(a.split("=", 1) for a in args[1:] if "=" in a and not a.startswith("--"))
-rho = sets["hydro_corotating.rho_max"]
+rho = sets["star.rho_max"]
 out.mkdir(parents=True, exist_ok=True)
 (out / "checkpoints").mkdir(exist_ok=True)
 for f in (out / "checkpoints").iterdir():

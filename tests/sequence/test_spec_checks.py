@@ -79,7 +79,7 @@ class SpecFile(Folder):
         ("deep nesting", "sequence: " + "[" * 60000, "nested deeper than 32"),
         ("duplicate key", SPEC + "  targets: [0.7]\n", "sequence.targets: duplicate key (first on line 6)"),
         ("1e400", spec_with(mass_ratio="1e400"), "sequence.mass_ratio: 1e400 overflows"),
-        ("a key the sequence sets", spec_with(set="{hydro_corotating.rho_max: 0.1}"), "set by the sequence itself"),
+        ("a key the sequence sets", spec_with(set="{star.rho_max: 0.1}"), "set by the sequence itself"),
     ]
 
     def test_every_bad_value_is_one_line_naming_the_file_and_key(self):

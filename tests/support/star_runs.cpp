@@ -110,7 +110,7 @@ ParfileRun run_parfile(const std::string& parfile, const std::vector<std::string
 std::vector<double> fixed_source_errors(double (*value)(const StarRun&), double reference) {
   std::vector<double> errors;
   for (const auto& [n, dx] : {std::pair{32, 0.12}, std::pair{64, 0.06}, std::pair{128, 0.03}}) {
-    const StarRun r = run_static_star(n, dx, {"hydro_corotating.iterate=false"});
+    const StarRun r = run_static_star(n, dx, {"star.iterate=false"});
     if (r.exit_code != 0) throw std::runtime_error("the fixed-source run failed:\n" + r.output);
     errors.push_back(value(r) - reference);
   }

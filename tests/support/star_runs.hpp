@@ -31,7 +31,7 @@ ParfileRun run_parfile(const std::string& parfile, const std::vector<std::string
 StarRun run_static_star(int n, double dx, const std::vector<std::string>& sets = {},
                         const std::string& parfile = "static_star.yaml");
 
-/// The fixed-source solve (hydro_corotating.iterate = false: the TOV density held at sigma = R_iso)
+/// The fixed-source solve (star.iterate = false: the TOV density held at sigma = R_iso)
 /// at dx = 0.12, 0.06, 0.03 on r_c = 1.92, returning value(run) - reference for each; REQUIREs every
 /// run to succeed.
 std::vector<double> fixed_source_errors(double (*value)(const StarRun&), double reference);

@@ -1,5 +1,5 @@
 #pragma once
-// TEST ONLY: a "hydro" Fluid for the equation plugins' manufactured-solution tests. The fluid moves
+// TEST ONLY: a "star" Fluid for the equation plugins' manufactured-solution tests. The fluid moves
 // with a stored coordinate velocity V (field test_fluid_velocity, any shape, not a corotation), so
 // that v^i = (beta^i + V^i)/alpha, W^2 = 1/(1 - phi^4 |v|^2), and the projections
 // rho_E = rho0 h W^2 - P, S = rho0 h (W^2 - 1) + 3P, j^i = rho0 h W^2 v^i. It is written here, apart

@@ -62,7 +62,7 @@ TEST_CASE("plugins.diagnostics.falloff_mass_is_exact_for_a_monopole", "[plugins]
 }
 
 TEST_CASE("plugins.diagnostics.volume_mass_of_a_gaussian", "[plugins][diagnostics]") {
-  // phi = 1 and rho_E = a exp(-r^2/s^2) (dust at rest, as the hydro plugin would give it):
+  // phi = 1 and rho_E = a exp(-r^2/s^2) (dust at rest, as the star would give it):
   // M_ADM = sigma^3 Int rho_E = sigma^3 a pi^(3/2) s^3; the trapezoid rule on a smooth, decayed
   // integrand is accurate far below 1e-8 at n = 32.
   auto g = make_grid(32);

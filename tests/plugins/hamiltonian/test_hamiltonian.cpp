@@ -14,7 +14,7 @@ using Catch::Detail::Approx;
 namespace {
 
 struct Point {
-  double puncture_phi, aa, energy;  ///< energy: rho_E as the hydro plugin gives it
+  double puncture_phi, aa, energy;  ///< energy: rho_E as the star gives it
 };
 
 hamiltonian::Sources sources_of(const Point& p, double sigma) {
@@ -63,7 +63,7 @@ TEST_CASE("plugins.hamiltonian.puncture_term_stays_finite_at_the_hole", "[plugin
 }
 
 TEST_CASE("plugins.hamiltonian.tov_source_gives_psi_tov_at_second_order", "[plugins][hamiltonian]") {
-  // With the TOV density of rho_c = 0.1 held fixed at sigma = R_iso (hydro_corotating.iterate =
+  // With the TOV density of rho_c = 0.1 held fixed at sigma = R_iso (star.iterate =
   // false), chi must be the TOV conformal factor: chi(0) -> psi_c = 1.15989819199 (tov.py,
   // physics-notes §6.1) with the error falling by 4 (3.4 .. 4.6) per halving of dx on one cube
   // (r_c = 1.92: the exterior is a pure monopole, which the Robin rows keep exactly).
@@ -77,8 +77,8 @@ TEST_CASE("plugins.hamiltonian.tov_source_gives_psi_tov_at_second_order", "[plug
 TEST_CASE("plugins.hamiltonian.matter_coefficient_error_is_visible", "[plugins][hamiltonian]") {
   // The test-only factor 1 + 1e-2 on the matter term moves chi(0) by far more than the
   // discretization error at dx = 0.06 (2.3e-4): the TOV comparison above can fail.
-  const StarRun good = run_static_star(64, 0.06, {"hydro_corotating.iterate=false"});
-  const StarRun bad = run_static_star(64, 0.06, {"hydro_corotating.iterate=false", "hamiltonian.test_matter_scale=1.01"});
+  const StarRun good = run_static_star(64, 0.06, {"star.iterate=false"});
+  const StarRun bad = run_static_star(64, 0.06, {"star.iterate=false", "hamiltonian.test_matter_scale=1.01"});
   REQUIRE(good.exit_code == 0);
   REQUIRE(bad.exit_code == 0);
   INFO("chi(0): " << good.chi_centre << " vs " << bad.chi_centre);

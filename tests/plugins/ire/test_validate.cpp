@@ -45,8 +45,8 @@ TEST_CASE("plugins.ire.validate_static_star", "[plugins][ire]") {
 
 TEST_CASE("plugins.ire.validate_static_star_beside_a_boosted_hole", "[plugins][ire]") {
   // A star at rest in the coordinates beside a moving hole has v = beta/alpha: the momentum
-  // constraint, the shift and the IRE must all see the same j^i = rho0 h W^2 v^i (the hydro plugin's
-  // projections). Before they were the hydro plugin's, the IRE took v = 0 for a static star and its
+  // constraint, the shift and the IRE must all see the same j^i = rho0 h W^2 v^i (the star's
+  // projections). Before they were the star's, the IRE took v = 0 for a static star and its
   // momentum residual was 8 pi sigma^2 j^y, not converging. Measured (n = 32, 64, 128, L2 orders of
   // the finest pair): Hamiltonian 1.85, momentum 1.85, lapse 1.84, shift 2.00.
   TempDir dir;
@@ -144,7 +144,7 @@ TEST_CASE("plugins.ire.validate_refuses_bad_input", "[plugins][ire]") {
   CHECK(missing.exit_code == 2);
   CHECK(missing.output.find("nope.yaml") != std::string::npos);
   // rho_max above the fold: every run fails; validate stops at the first with its log named.
-  const Validated failed = validate(dir, ss, {"grid.n=16", "grid.dx=0.24", "hydro_corotating.rho_max=0.5"});
+  const Validated failed = validate(dir, ss, {"grid.n=16", "grid.dx=0.24", "star.rho_max=0.5"});
   INFO(failed.output);
   CHECK(failed.exit_code == 1);
   CHECK(failed.output.find("level_0") != std::string::npos);

@@ -21,7 +21,7 @@ TEST_CASE("plugins.lapse.point_term_is_eq_maxslice_hat", "[plugins][lapse]") {
   s.chi = &chi;
   s.puncture_phi = &punc;
   s.aa = &aa;
-  // rho_E = rho0 h - P and S = 3P, as the hydro plugin gives them for a static star.
+  // rho_E = rho0 h - P and S = 3P, as the star gives them for a static star.
   const double energy = rho0 * h - press, trace = 3 * press;
   s.matter.energy = &energy;
   s.matter.trace = &trace;

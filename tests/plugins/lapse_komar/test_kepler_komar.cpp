@@ -1,6 +1,6 @@
 // The Kepler limit with the singular-term lapse, parfiles/kepler_komar.yaml: mu_bn = 1,
 // rho_max = 0.01, xhat_A = 0.6, n = 128, dx = 0.02, d/M_tot ~ 210 (the configuration of
-// kepler_limit.yaml, where the paper's lapse gives 1/2: tests/plugins/hydro_corotating/test_kepler.cpp).
+// kepler_limit.yaml, where the paper's lapse gives 1/2: tests/plugins/star/test_kepler.cpp).
 #include <catch2/catch.hpp>
 
 #include <cmath>

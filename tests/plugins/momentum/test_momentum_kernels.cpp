@@ -43,7 +43,7 @@ constexpr double dchi[3] = {0.2, -0.1, 0.15}, deta[3] = {-0.12, 0.08, -0.05};
 struct Fixture {
   Block w[3] = {sample(wx), sample(wy), sample(wz)};
   Block chi = sample(chi_f), eta = sample(eta_f);
-  Block pphi{}, j[3]{};  ///< j: the momentum density as the hydro plugin gives it
+  Block pphi{}, j[3]{};  ///< j: the momentum density as the star gives it
   Fixture() {
     pphi.fill(0.4);
     j[0].fill(0.0021), j[1].fill(-0.0043), j[2].fill(0.0012);

@@ -44,9 +44,9 @@ TEST_CASE("plugins.puncture.binary_hole_is_scaled_to_the_star", "[plugins][punct
   test::TempDir dir;
   const auto par = dir.write("b.yaml",
                              "plugins: [grid, multigrid, eos_polytrope, tov, puncture, hamiltonian, lapse, momentum, "
-                             "shift, hydro_corotating, diagnostics]\n"
+                             "shift, star, flow_corotating, diagnostics]\n"
                              "grid:\n  n: 32\n  dx: 0.12\n"
-                             "hydro_corotating:\n  rho_max: 0.1\n  x_a: 0.2\n  iterate: false\n"
+                             "star:\n  rho_max: 0.1\n  x_a: 0.2\n  iterate: false\n"
                              "puncture:\n  mass_ratio: 1.0\n");
   const auto out = dir.path() / "run";
   const test::ProcessResult r = test::run_bhnsid({"run", par.string(), "--output", out.string()});

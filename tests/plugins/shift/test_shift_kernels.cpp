@@ -54,7 +54,7 @@ struct PointSetup {
   std::ptrdiff_t idx = lv.at(2, 2, 2);
   double mass = 0.6, x_bh[3] = {0.64, -0.48, 0.6};
   double a[6] = {0.2, -0.1, 0.05, 0.15, 0.3, -0.35};
-  double J[3] = {0.012, -0.021, 0.0047};  // the momentum density, as the hydro plugin gives it
+  double J[3] = {0.012, -0.021, 0.0047};  // the momentum density, as the star gives it
 
   PointSetup() {
     auto make = [&](std::vector<double>& f) { f.assign(lv.size, 0.0); };
@@ -142,7 +142,7 @@ void check_triple(const stencil::Triple& t, const std::array<double, 3>& e) {
 
 TEST_CASE("plugins.shift.point_term_is_eq_mindist_hat", "[plugins][shift]") {
   // The kernel's lower-order term is minus the right-hand side of eq. mindist_hat, with the hatted
-  // dphi = puncture part + d chi, alpha (the lapse's field, differenced as it is) and the hydro plugin's J^i, in all four variants
+  // dphi = puncture part + d chi, alpha (the lapse's field, differenced as it is) and the star's J^i, in all four variants
   // (hole, matter), and test_source_scale multiplies the Ahat term only.
   const PointSetup ps;
   const double sigma = 0.85;

@@ -119,7 +119,7 @@ TEST_CASE("plugins.tov.frozen_profile_exterior_and_interpolation", "[plugins][to
 TEST_CASE("plugins.tov.frozen_profile_sigma_derivatives_have_the_papers_signs", "[plugins][tov]") {
   // "Increasing sigma acts like more matter": d alpha_m/d sigma < 0 and d phi_m/d sigma > 0 at the
   // centre and the surface, at sigma_tov (rho_max = 0.1: -1.0671 and +0.8137 at the centre, measured),
-  // as finite differences with the hydro plugin's delta = 1e-6 sigma. Smooth in sigma: the differences
+  // as finite differences with the star's delta = 1e-6 sigma. Smooth in sigma: the differences
   // with delta = 1e-6 and 1e-5 differ by the curvature term (f''/2) delta, so their extrapolation to
   // delta = 0 from 1e-5 and 1e-4 predicts the 1e-6 difference to 1e-5 relative (measured 1e-6, the
   // neglected delta^2 term; the rounding noise of a Newton-converged alpha, ~1e-13, would be 1e-7).

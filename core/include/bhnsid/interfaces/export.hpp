@@ -1,7 +1,7 @@
 #pragma once
 // Physical fields for the output plugins, in the Einstein Toolkit's names and conventions
 // (ADMBase, HydroBase), published by the plugin that owns each quantity under a capability
-// "export.<plugin>": the lapse plugin knows alp = eta/phi, the hydro plugin the Valencia velocity,
+// "export.<plugin>": the lapse plugin knows alp = eta/phi, the star the Valencia velocity,
 // and an output plugin writes whatever is published without knowing any of it.
 #include <cstddef>
 #include <functional>

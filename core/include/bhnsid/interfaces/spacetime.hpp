@@ -1,7 +1,7 @@
 #pragma once
 // What the field-equation plugins (hamiltonian, lapse, momentum, shift, ire, diagnostics) share: the
-// names of the grid fields through which they read each other, the matter as a hydro plugin
-// publishes it ("hydro" capability, Fluid) and the black hole as a puncture plugin publishes it
+// names of the grid fields through which they read each other, the matter as the star plugin
+// publishes it ("star" capability, Fluid; its motion is a flow plugin's, flow.hpp) and the black hole as a puncture plugin publishes it
 // ("puncture" capability, Puncture). All in hatted (sigma-rescaled) coordinates, physics-notes §1.3.
 // No physics formula lives here: each plugin owns the formulas it uses.
 #include <array>
@@ -31,25 +31,25 @@ inline constexpr const char* ansatz_weight = "wvec_weight";
 /// level; it also fills aa_hat from it. Both are refreshed before each field solve.
 inline constexpr const char* ahat = "ahat";
 inline constexpr const char* excision_mask = "excision";  ///< shift: the cube about the puncture (a grid mask)
-inline constexpr const char* rho0 = "rho0";            ///< hydro: rest-mass density (never rescaled)
-inline constexpr const char* press = "press";          ///< hydro: pressure
-inline constexpr const char* enthalpy = "enthalpy";    ///< hydro: specific enthalpy h (1 in vacuum)
-/// hydro: the matter projections the field equations read (physics-notes §1.2), every level, k = 1
+inline constexpr const char* rho0 = "rho0";            ///< star: rest-mass density (never rescaled)
+inline constexpr const char* press = "press";          ///< star: pressure
+inline constexpr const char* enthalpy = "enthalpy";    ///< star: specific enthalpy h (1 in vacuum)
+/// star: the matter projections the field equations read (physics-notes §1.2), every level, k = 1
 /// units (never rescaled; the hatted equations carry sigma^2): rho_E = n_a n_b T^ab, the trace S of
 /// S_ij = gamma_ia gamma_jb T^ab, and j^i = -gamma^ia T_ab n^b (3 components, time-odd). They depend
-/// on the unknowns (through W), so the hydro plugin refills them from the current fields before
+/// on the unknowns (through W), so the star refills them (through its flow) from the current fields before
 /// every sweep (Fluid::update_sources); outside the matter they are 0.
 inline constexpr const char* matter_energy = "matter_energy";
 inline constexpr const char* matter_trace = "matter_trace";
 inline constexpr const char* matter_momentum = "matter_momentum";
-/// The matter fields of a hydro plugin, with their components (memory estimates).
+/// The matter fields of the star, with their components (memory estimates).
 inline constexpr std::array<FieldSize, 6> fluid_sizes{
     {{rho0, 1}, {press, 1}, {enthalpy, 1}, {matter_energy, 1}, {matter_trace, 1}, {matter_momentum, 3}}};
 }  // namespace fields
 
 /// The matter as the field equations see it. The equations read only the projections rho_E, S and
-/// j^i; how the fluid moves (corotation, an irrotational potential), and so W and v^i, is the hydro
-/// plugin's business, and another hydro plugin replaces it without touching an equation.
+/// j^i; how the fluid moves (corotation, an irrotational potential), and so W and v^i, is the flow
+/// plugin's business (flow.hpp), and another flow replaces it without touching an equation.
 class Fluid : public core::Service {
  public:
   ~Fluid() override;  ///< defined in the core library (see grid.hpp)
@@ -74,7 +74,7 @@ class Fluid : public core::Service {
   /// The Bernoulli constant C_B (h alpha / W = C_B inside the star for corotation, physics-notes §3),
   /// for the IRE's Bernoulli residual; NaN for a fluid without that first integral.
   virtual double bernoulli_constant() const { return std::nan(""); }
-  /// The fields the hydro plugin reads on every level to form the projections; the equations list
+  /// The fields the star and its flow read on every level to form the projections; the equations list
   /// them as coefficients, so that the multigrid solver restricts them before each solve.
   virtual std::vector<std::string> source_inputs() const = 0;
   /// Refills matter_energy, matter_trace and matter_momentum on `level` from the fluid and the

@@ -1,5 +1,5 @@
 // TEST ONLY plugin for the momentum plugin's tests: it stands in for the hamiltonian, lapse and hydro
-// plugins. It publishes a "hydro" Fluid (moving, sigma from its parameter), registers and fills
+// plugins. It publishes a "star" Fluid (moving, sigma from its parameter), registers and fills
 // chi, eta, puncture_phi analytically on every level and the fluid fields (rho0, press = 0,
 // enthalpy = 1, fluid_velocity) so that the momentum density is the J of mms/problem.hpp, for which
 // W_exact solves eq. mom_ansatz_hat exactly. At ANALYSIS it reports the error of the solved wvec.
@@ -74,7 +74,7 @@ void fill(Grid& grid, const bhnsid::test::FieldVelocityFluid& fluid, const Probl
 void declare(core::PluginBuilder& b) {
   auto state = std::make_shared<State>();
   b.require("grid");
-  b.implements("hydro");
+  b.implements("star");
   b.implements("lapse");
   b.real("sigma").doc("the Fluid's sigma (multiplies the matter term by sigma^2)").default_value(0.8).greater_than(0);
   b.real("velocity_scale")
@@ -98,7 +98,7 @@ void declare(core::PluginBuilder& b) {
      state->problem.chi_bump.amp = ctx.params().real("chi_amplitude");
      state->problem.eta_bump.amp = ctx.params().real("eta_amplitude");
      state->fluid->sigma_value = state->problem.sigma;
-     ctx.publish<bhnsid::Fluid>("hydro", state->fluid);
+     ctx.publish<bhnsid::Fluid>("star", state->fluid);
      ctx.publish<bhnsid::Lapse>("lapse", std::make_shared<bhnsid::test::EtaOverPhiLapse>());
    }).doc("publish the test Fluid and the lapse alpha = eta/phi (its regular part eta is the momentum weight)");
 

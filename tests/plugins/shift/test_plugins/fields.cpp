@@ -1,7 +1,7 @@
 // TEST ONLY plugin for the shift's tests: it stands in for the hamiltonian, lapse, momentum and hydro
 // plugins. It registers chi, eta, alpha, puncture_phi and ahat, publishes a "lapse" (alpha = eta/phi), and fills them on every level with the
 // manufactured functions of support/manufactured.hpp (puncture_phi = Mhat/(2 r) from a "puncture"
-// service, if any, before every solve), and with `matter` publishes a "hydro" Fluid whose rho0 and
+// service, if any, before every solve), and with `matter` publishes a "star" Fluid whose rho0 and
 // velocity make beta_exact the exact solution. ANALYSIS: the error of beta against beta_exact
 // (scalars shift_mms_error_max, shift_mms_error_rms, shift_mms_beta_max). OUTPUT: with an excision
 // mask, excision_points.tsv lists every held point of every level with its beta.
@@ -45,7 +45,7 @@ void for_all_points(const Level& lv, Fn&& fn) {
 
 void declare(bhnsid::core::PluginBuilder& b) {
   b.require("grid");
-  b.implements("hydro");
+  b.implements("star");
   b.implements("lapse");
   b.boolean("matter").doc("publish the hydro service with the manufactured rho0 and fluid velocity").default_value(true);
   b.boolean("provide_ahat").doc("register ahat (false: show the shift's missing-field error)").default_value(true);
@@ -83,7 +83,7 @@ void declare(bhnsid::core::PluginBuilder& b) {
        grid.data(h, 0, 0)[p] = f.enthalpy;
        for (int c = 0; c < 3; ++c) grid.data(vel, c, 0)[p] = f.velocity[static_cast<std::size_t>(c)];
      });
-     ctx.publish<bhnsid::Fluid>("hydro", fluid);
+     ctx.publish<bhnsid::Fluid>("star", fluid);
    })
       .after("grid.create")
       .doc("register and fill chi, eta, puncture_phi, ahat (and the fluid), publish lapse and hydro");
