@@ -1,0 +1,324 @@
+#include "irrotational.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "bhnsid/core/errors.hpp"
+#include "bhnsid/interfaces/spacetime.hpp"
+
+namespace bhnsid::flow_irrotational {
+
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+/// dhat Psitilde at an interior stored point of a level. `matter` null: centred differences through
+/// whatever the neighbours hold (the extension outside the star). Otherwise only neighbours with
+/// rho0 > 0 are read (one-sided next to the surface, 0 with neither): the physical-only stencil of
+/// the velocities a user reads. Psitilde is even in z, so d_z vanishes on the plane z = 0.
+std::array<double, 3> gradient(const Level& lv, const double* psi, const double* matter, int i, int j, int k) {
+  std::array<double, 3> g{0.0, 0.0, 0.0};
+  if (i < 1 || i > lv.nx - 2 || j < 1 || j > lv.ny - 2 || k > lv.nz - 2 || (k < 1 && !lv.z_symmetry)) return g;
+  const std::ptrdiff_t p = lv.at(i, j, k);
+  const std::ptrdiff_t step[3] = {1, lv.sy, lv.sz};
+  for (int d = 0; d < 3; ++d) {
+    if (d == 2 && k == 0 && lv.z_symmetry) continue;
+    const std::ptrdiff_t up = p + step[d], down = p - step[d];
+    if (!matter) {
+      g[d] = (psi[up] - psi[down]) / (2 * lv.dx);
+      continue;
+    }
+    const bool u = matter[up] > 0, w = matter[down] > 0;
+    g[d] = u && w ? (psi[up] - psi[down]) / (2 * lv.dx) : u ? (psi[up] - psi[p]) / lv.dx : w ? (psi[p] - psi[down]) / lv.dx : 0.0;
+  }
+  return g;
+}
+
+/// The finest-level arrays the flow reads, ghosts filled: alpha, phi, beta (null without a shift).
+struct Fields {
+  std::vector<double> alpha, phi, beta[3];
+  bool has_shift = false;
+};
+
+Fields finest_fields(Grid& grid, const Lapse& lapse) {
+  const Level& lv = grid.finest();
+  Fields f;
+  const double* a = lapse_on(grid, lapse, 0);
+  f.alpha.assign(a, a + lv.size);
+  grid.fill_ghosts(f.alpha.data(), Parity{}, 0);
+  const double* chi = grid.data(grid.field_id(fields::chi), 0, 0);
+  const double* pphi = grid.data(grid.field_id(fields::puncture_phi), 0, 0);
+  f.phi.assign(lv.size, 1.0);
+  for (std::size_t p = 0; p < lv.size; ++p) f.phi[p] = pphi[p] + chi[p];
+  grid.fill_ghosts(f.phi.data(), Parity{}, 0);
+  f.has_shift = grid.has_field(fields::shift);
+  for (int c = 0; c < 3; ++c) {
+    f.beta[c].assign(lv.size, 0.0);
+    if (!f.has_shift) continue;
+    const double* b = grid.data(grid.field_id(fields::shift), c, 0);
+    std::copy(b, b + lv.size, f.beta[c].begin());
+    grid.fill_ghosts(f.beta[c].data(), Parity{c == 2 ? -1 : 1, 1}, 0);
+  }
+  return f;
+}
+
+/// G = sqrt(((1 + B.dPsitilde)/alpha)^2 - phi^-4 |dPsitilde|^2), NaN where it is not real and positive.
+double first_integral_g(double alpha, double phi, const double b[3], const std::array<double, 3>& g) {
+  const double l = (1.0 + b[0] * g[0] + b[1] * g[1] + b[2] * g[2]) / alpha;
+  const double phi2 = phi * phi;
+  const double g2 = l * l - (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]) / (phi2 * phi2);
+  return alpha > 0 && l > 0 && g2 > 0 ? std::sqrt(g2) : nan;
+}
+
+}  // namespace
+
+void Irrotational::attach(Grid& grid, const Lapse& lapse, const Eos& eos) {
+  lapse_ = &lapse;
+  eos_ = &eos;
+  psi_ = grid.add_field(potential_field, {core::TensorKind::scalar});
+}
+
+const Lapse& Irrotational::lapse() const {
+  if (!lapse_) throw core::RunFailure("flow_irrotational: used before SETUP gave it the lapse");
+  return *lapse_;
+}
+
+void Irrotational::prepare(Grid& grid, const FlowConstants& c) {
+  const Level& lv = grid.finest();
+  const Fields f = finest_fields(grid, lapse());
+  const double* rho0 = grid.data(grid.field_id(fields::rho0), 0, 0);
+  const double* psi = grid.data(psi_, 0, 0);
+  // The star's box, widened by the band the level set and the extension need.
+  constexpr int margin = 4;
+  std::array<std::array<int, 2>, 3> box{{{lv.nx, -1}, {lv.ny, -1}, {lv.nz, -1}}};
+  for (int k = 0; k < lv.nz; ++k)
+    for (int j = 0; j < lv.ny; ++j)
+      for (int i = 0; i < lv.nx; ++i)
+        if (rho0[lv.at(i, j, k)] > 0) {
+          const int v[3] = {i, j, k};
+          for (int a = 0; a < 3; ++a) box[a] = {std::min(box[a][0], v[a]), std::max(box[a][1], v[a])};
+        }
+  if (box[0][1] < 0) throw core::RunFailure("flow_irrotational: no matter on the grid to solve the velocity potential in");
+  const int extent[3] = {lv.nx, lv.ny, lv.nz};
+  for (int a = 0; a < 3; ++a)
+    box[a] = {std::max(box[a][0] - margin, a == 2 && lv.z_symmetry ? 0 : 1), std::min(box[a][1] + margin, extent[a] - 2)};
+  // The level set s = htilde - 1, htilde = C_B G from the current fields and Psitilde, in a band of
+  // three points about the star (elsewhere -1: no second star about the hole, where alpha < C_B).
+  std::vector<double> level_set(lv.size, -1.0);
+  for (int k = box[2][0]; k <= box[2][1]; ++k)
+    for (int j = box[1][0]; j <= box[1][1]; ++j)
+      for (int i = box[0][0]; i <= box[0][1]; ++i) {
+        bool near = false;
+        for (int dk = -3; dk <= 3 && !near; ++dk)
+          for (int dj = -3; dj <= 3 && !near; ++dj)
+            for (int di = -3; di <= 3 && !near; ++di) {
+              const int kk = lv.z_symmetry ? std::abs(k + dk) : k + dk;
+              if (i + di < 0 || i + di >= lv.nx || j + dj < 0 || j + dj >= lv.ny || kk < 0 || kk >= lv.nz) continue;
+              near = rho0[lv.at(i + di, j + dj, kk)] > 0;
+            }
+        if (!near) continue;
+        const std::ptrdiff_t p = lv.at(i, j, k);
+        const double b[3] = {f.beta[0][p] - c.omega_hat * lv.y(j), f.beta[1][p] + c.omega_hat * lv.x(i), f.beta[2][p]};
+        const double g = first_integral_g(f.alpha[p], f.phi[p], b, gradient(lv, psi, nullptr, i, j, k));
+        if (std::isfinite(g)) level_set[p] = c.bernoulli * g - 1.0;
+      }
+  grid.fill_ghosts(level_set.data(), Parity{}, 0);
+  PotentialCoefficients coefficients;
+  coefficients.alpha = f.alpha.data();
+  coefficients.phi = f.phi.data();
+  for (int a = 0; a < 3; ++a) coefficients.beta[a] = f.has_shift ? f.beta[a].data() : nullptr;
+  coefficients.level_set = level_set.data();
+  coefficients.omega_hat = c.omega_hat;
+  coefficients.box = box;
+  // The gauge vertex: the density maximum's axis point.
+  double best = -1;
+  for (int i = box[0][0]; i <= box[0][1]; ++i) {
+    const double r = rho0[lv.at(i, lv.n / 2, 0)];
+    if (r > best) best = r, coefficients.centre = {lv.x(i), 0.0, 0.0};
+  }
+  if (psi_xi_.size() != lv.size) psi_xi_.assign(lv.size, 0.0);
+  last_ = solve_potential(grid, psi_, psi_xi_.data(), *eos_, coefficients, settings_);
+  ++solves_;
+  if (!last_.converged)
+    throw core::RunFailure(fmt::format("flow_irrotational: the velocity potential's solve did not converge ({} unknowns, "
+                                       "{} iterations, relative residual {:.3e} against {:.1e})",
+                                       last_.unknowns, last_.iterations, last_.residual, settings_.tolerance));
+}
+
+void Irrotational::update_sources(Grid& grid, int level, const FlowConstants& c) const {
+  const Level& lv = grid.level(level);
+  const double* rho0 = grid.data(grid.field_id(fields::rho0), 0, level);
+  const double* press = grid.data(grid.field_id(fields::press), 0, level);
+  const double* enthalpy = grid.data(grid.field_id(fields::enthalpy), 0, level);
+  const double* chi = grid.data(grid.field_id(fields::chi), 0, level);
+  const double* pphi = grid.data(grid.field_id(fields::puncture_phi), 0, level);
+  const double* psi = grid.data(psi_, 0, level);
+  double* energy = grid.data(grid.field_id(fields::matter_energy), 0, level);
+  double* trace = grid.data(grid.field_id(fields::matter_trace), 0, level);
+  const int mom = grid.field_id(fields::matter_momentum);
+  double* j_up[3] = {grid.data(mom, 0, level), grid.data(mom, 1, level), grid.data(mom, 2, level)};
+  const double cb = c.bernoulli;
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < lv.nz; ++k)
+    for (int j = 0; j < lv.ny; ++j)
+      for (int i = 0; i < lv.nx; ++i) {
+        const std::ptrdiff_t p = lv.at(i, j, k);
+        if (!(rho0[p] > 0)) {
+          energy[p] = trace[p] = j_up[0][p] = j_up[1][p] = j_up[2][p] = 0.0;
+          continue;
+        }
+        const std::array<double, 3> g = gradient(lv, psi, nullptr, i, j, k);
+        const double phi = pphi[p] + chi[p], phi2 = phi * phi, inv_phi4 = 1.0 / (phi2 * phi2), h = enthalpy[p];
+        const double p2 = cb * cb * (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+        const double w2 = 1.0 + inv_phi4 * p2 / (h * h), w = std::sqrt(w2);
+        const double rho_h = rho0[p] * h;
+        energy[p] = rho_h * w2 - press[p];
+        trace[p] = rho_h * (w2 - 1.0) + 3.0 * press[p];
+        for (int a = 0; a < 3; ++a) j_up[a][p] = rho0[p] * w * inv_phi4 * cb * g[static_cast<std::size_t>(a)];
+      }
+}
+
+void Irrotational::velocity(Grid& grid, const FlowConstants& c, double* lorentz, double* const* v) const {
+  const Level& lv = grid.finest();
+  const double* rho0 = grid.data(grid.field_id(fields::rho0), 0, 0);
+  const double* enthalpy = grid.data(grid.field_id(fields::enthalpy), 0, 0);
+  const double* chi = grid.data(grid.field_id(fields::chi), 0, 0);
+  const double* pphi = grid.data(grid.field_id(fields::puncture_phi), 0, 0);
+  const double* psi = grid.data(psi_, 0, 0);
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < lv.nz; ++k)
+    for (int j = 0; j < lv.ny; ++j)
+      for (int i = 0; i < lv.nx; ++i) {
+        const std::ptrdiff_t p = lv.at(i, j, k);
+        if (!(rho0[p] > 0)) {
+          lorentz[p] = 1.0;
+          if (v)
+            for (int a = 0; a < 3; ++a) v[a][p] = 0.0;
+          continue;
+        }
+        // Physical-only stencils: the velocity in the last matter layer reads no extended value.
+        const std::array<double, 3> g = gradient(lv, psi, rho0, i, j, k);
+        const double phi = pphi[p] + chi[p], phi2 = phi * phi, inv_phi4 = 1.0 / (phi2 * phi2), h = enthalpy[p];
+        const double p2 = c.bernoulli * c.bernoulli * (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+        const double w = std::sqrt(1.0 + inv_phi4 * p2 / (h * h));
+        lorentz[p] = w;
+        if (v)
+          for (int a = 0; a < 3; ++a) v[a][p] = inv_phi4 * c.bernoulli * g[static_cast<std::size_t>(a)] / (h * w);
+      }
+}
+
+void Irrotational::enthalpy(Grid& grid, const FlowConstants& c, const double* alpha, const double* phi, double* h) const {
+  const Level& lv = grid.finest();
+  const double* psi = grid.data(psi_, 0, 0);
+  const double* beta[3] = {nullptr, nullptr, nullptr};
+  if (grid.has_field(fields::shift))
+    for (int a = 0; a < 3; ++a) beta[a] = grid.data(grid.field_id(fields::shift), a, 0);
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < lv.nz; ++k)
+    for (int j = 0; j < lv.ny; ++j)
+      for (int i = 0; i < lv.nx; ++i) {
+        const std::ptrdiff_t p = lv.at(i, j, k);
+        double b[3] = {-c.omega_hat * lv.y(j), c.omega_hat * lv.x(i), 0.0};
+        for (int a = 0; a < 3; ++a) b[a] += beta[a] ? beta[a][p] : 0.0;
+        const double g = first_integral_g(alpha[p], phi[p], b, gradient(lv, psi, nullptr, i, j, k));
+        h[p] = std::isfinite(g) ? c.bernoulli * g : -1.0;
+      }
+}
+
+void Irrotational::first_integral(Grid& grid, const FlowConstants& c, double* out) const {
+  const Level& lv = grid.finest();
+  const double* rho0 = grid.data(grid.field_id(fields::rho0), 0, 0);
+  const double* enthalpy = grid.data(grid.field_id(fields::enthalpy), 0, 0);
+  const double* chi = grid.data(grid.field_id(fields::chi), 0, 0);
+  const double* pphi = grid.data(grid.field_id(fields::puncture_phi), 0, 0);
+  const double* psi = grid.data(psi_, 0, 0);
+  const double* alpha = lapse_on(grid, lapse(), 0);
+  const double* beta[3] = {nullptr, nullptr, nullptr};
+  if (grid.has_field(fields::shift))
+    for (int a = 0; a < 3; ++a) beta[a] = grid.data(grid.field_id(fields::shift), a, 0);
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < lv.nz; ++k)
+    for (int j = 0; j < lv.ny; ++j)
+      for (int i = 0; i < lv.nx; ++i) {
+        const std::ptrdiff_t p = lv.at(i, j, k);
+        if (!(rho0[p] > 0)) {
+          out[p] = nan;
+          continue;
+        }
+        const std::array<double, 3> g = gradient(lv, psi, rho0, i, j, k);
+        const double phi = pphi[p] + chi[p], phi2 = phi * phi, h = enthalpy[p];
+        const double cb = c.bernoulli;
+        const double w = std::sqrt(1.0 + cb * cb * (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]) / (phi2 * phi2 * h * h));
+        double b[3] = {-c.omega_hat * lv.y(j), c.omega_hat * lv.x(i), 0.0};
+        for (int a = 0; a < 3; ++a) b[a] += beta[a] ? beta[a][p] : 0.0;
+        // h alpha W - B^i p_i with p = C_B dhat Psitilde.
+        out[p] = h * alpha[p] * w - cb * (b[0] * g[0] + b[1] * g[1] + b[2] * g[2]);
+      }
+}
+
+std::array<double, 2> Irrotational::potential_size(Grid& grid) const {
+  const Level& lv = grid.finest();
+  const double* rho0 = grid.data(grid.field_id(fields::rho0), 0, 0);
+  const double* psi = grid.data(psi_, 0, 0);
+  double psi_max = 0, grad_max = 0;
+  for (int k = 0; k < lv.nz; ++k)
+    for (int j = 0; j < lv.ny; ++j)
+      for (int i = 0; i < lv.nx; ++i) {
+        const std::ptrdiff_t p = lv.at(i, j, k);
+        if (!(rho0[p] > 0)) continue;
+        psi_max = std::max(psi_max, std::fabs(psi[p]));
+        const std::array<double, 3> g = gradient(lv, psi, rho0, i, j, k);
+        grad_max = std::max(grad_max, std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]));
+      }
+  return {grid.global_max(psi_max), grid.global_max(grad_max)};
+}
+
+void Irrotational::freeze_axis(Grid& grid, const std::vector<double>& xs, const FlowConstants& c) {
+  const Level& lv = grid.finest();
+  const double* psi = grid.data(psi_, 0, 0);
+  if (psi_xi_.size() != lv.size) psi_xi_.assign(lv.size, 0.0);
+  std::vector<double> dy(lv.size, 0.0), dy_xi(lv.size, 0.0);
+  for (int k = 0; k < lv.nz; ++k)
+    for (int j = 0; j < lv.ny; ++j)
+      for (int i = 0; i < lv.nx; ++i) {
+        dy[lv.at(i, j, k)] = gradient(lv, psi, nullptr, i, j, k)[1];
+        dy_xi[lv.at(i, j, k)] = gradient(lv, psi_xi_.data(), nullptr, i, j, k)[1];
+      }
+  grid.fill_ghosts(dy.data(), Parity{}, 0);
+  grid.fill_ghosts(dy_xi.data(), Parity{}, 0);
+  axis_x_ = xs;
+  axis_p_.assign(xs.size(), 0.0);
+  axis_p_xi_.assign(xs.size(), 0.0);
+  axis_beta_y_.assign(xs.size(), 0.0);
+  const double* beta_y = grid.has_field(fields::shift) ? grid.data(grid.field_id(fields::shift), 1, 0) : nullptr;
+  for (std::size_t p = 0; p < xs.size(); ++p) {
+    axis_p_[p] = grid.interpolate(dy.data(), Parity{}, 0, {xs[p], 0, 0});
+    axis_p_xi_[p] = grid.interpolate(dy_xi.data(), Parity{}, 0, {xs[p], 0, 0});
+    if (beta_y) axis_beta_y_[p] = grid.interpolate(beta_y, Parity{}, 0, {xs[p], 0, 0});
+  }
+  axis_omega_ = c.omega_hat;
+}
+
+AxisResidual Irrotational::axis_residual(std::size_t p, double alpha, double phi, double omega_hat, double bernoulli,
+                                         double enthalpy) const {
+  // F_P = C^2 G_P^2 - h_P^2, G^2 = (1 + u q)^2/alpha^2 - q^2/phi^4, u = beta^y + xhat Omegahat, with the
+  // potential's gradient q = dhat_y Psitilde moving with Omegahat as its source does: the potential is
+  // linear in B = beta + Omegahat xi, so q(Omegahat) = q_0 + (Omegahat - Omega_0) q_xi (q_xi from the
+  // rotation's part of the source; the operator's own B dependence, O(v^2), frozen). beta^y is frozen
+  // from the field solve, as in the corotating residual. With q frozen instead, the Newton step maps
+  // Omega to about Omega*^2/Omega and never converges.
+  const double x = axis_x_.at(p), q_xi = axis_p_xi_.at(p);
+  const double q = axis_p_.at(p) + (omega_hat - axis_omega_) * q_xi;
+  const double u = axis_beta_y_.at(p) + x * omega_hat;
+  const double l = 1.0 + u * q, dl = x * q + u * q_xi;
+  const double phi2 = phi * phi, phi4 = phi2 * phi2, alpha2 = alpha * alpha;
+  const double g2 = l * l / alpha2 - q * q / phi4, dg2 = 2.0 * l * dl / alpha2 - 2.0 * q * q_xi / phi4;
+  const double c2 = bernoulli * bernoulli;
+  return {c2 * g2 - enthalpy * enthalpy, c2 * dg2, 2.0 * bernoulli * g2};
+}
+
+}  // namespace bhnsid::flow_irrotational

@@ -1,0 +1,65 @@
+#pragma once
+// The irrotational flow: h u_a = nabla_a Psi, stored as Psitilde = Psi/(sigma C_B) on the hatted
+// grid (no sigma and no C_B in its equation). With p = C_B dhat Psitilde (= d_i Psi):
+//   W = sqrt(1 + phi^-4 |p|^2 / h^2)                (the normalisation, inside the field solve)
+//   v^i = phi^-4 p_i / (h W)                        (Eulerian, Valencia)
+//   j^i = rho0 W phi^-4 p_i,  rho_E = rho0 h W^2 - P,  S = rho0 h (W^2 - 1) + 3 P
+//   first integral: h alpha W - B^i p_i = C_B,  i.e.  h = C_B G,
+//   G^2 = ((1 + B^i dhat_i Psitilde)/alpha)^2 - phi^-4 |dhat Psitilde|^2,  B = beta + Omegahat xi,
+// and Psitilde from rest-mass conservation (potential.hpp), solved at the start of each outer step.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "bhnsid/interfaces/eos.hpp"
+#include "bhnsid/interfaces/flow.hpp"
+#include "bhnsid/interfaces/lapse.hpp"
+#include "potential.hpp"
+
+namespace bhnsid::flow_irrotational {
+
+inline constexpr const char* potential_field = "psi_tilde";
+
+class Irrotational final : public Flow {
+ public:
+  explicit Irrotational(PotentialSettings settings) : settings_(settings) {}
+  /// The lapse and the EOS the flow reads, and the field Psitilde registered on `grid`.
+  void attach(Grid& grid, const Lapse& lapse, const Eos& eos);
+
+  std::string kind() const override { return "irrotational"; }
+  std::vector<std::string> source_inputs() const override { return {potential_field}; }
+  void prepare(Grid& grid, const FlowConstants& c) override;
+  void update_sources(Grid& grid, int level, const FlowConstants& c) const override;
+  void velocity(Grid& grid, const FlowConstants& c, double* lorentz, double* const* v) const override;
+  std::string acausal_matter(Grid&, const FlowConstants&) const override { return {}; }
+  void enthalpy(Grid& grid, const FlowConstants& c, const double* alpha, const double* phi, double* h) const override;
+  void first_integral(Grid& grid, const FlowConstants& c, double* out) const override;
+  bool solves_continuity() const override { return true; }
+  void freeze_axis(Grid& grid, const std::vector<double>& xs, const FlowConstants& c) override;
+  AxisResidual axis_residual(std::size_t p, double alpha, double phi, double omega_hat, double bernoulli,
+                             double enthalpy) const override;
+
+  /// The last potential solve, for the log and the summary.
+  const PotentialSolve& last_solve() const { return last_; }
+  /// max |Psitilde - Psitilde(centre)| over the star's matter points (0 for a star at rest in a
+  /// rotating frame, up to the discretisation), and max |dhat Psitilde| there.
+  std::array<double, 2> potential_size(Grid& grid) const;
+  int solves() const { return solves_; }
+
+ private:
+  const Lapse& lapse() const;
+  PotentialSettings settings_;
+  const Lapse* lapse_ = nullptr;
+  const Eos* eos_ = nullptr;
+  int psi_ = -1;
+  PotentialSolve last_;
+  int solves_ = 0;
+  /// The rotation's part of Psitilde per unit Omegahat (finest level), from the last solve.
+  std::vector<double> psi_xi_;
+  /// The axis points of the Newton solve: x, beta^y and dhat_y of Psitilde and of its rotation's
+  /// part there, and the Omegahat the potential was solved with.
+  std::vector<double> axis_x_, axis_beta_y_, axis_p_, axis_p_xi_;
+  double axis_omega_ = 0;
+};
+
+}  // namespace bhnsid::flow_irrotational

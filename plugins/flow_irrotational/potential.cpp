@@ -1,0 +1,349 @@
+#include "potential.hpp"
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+#include <unsupported/Eigen/IterativeSolvers>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "bhnsid/core/errors.hpp"
+
+namespace bhnsid::flow_irrotational {
+
+double face_average_rho0(const Eos& eos, double s_f, double g1, double g2, double dx, int samples) {
+  const double w = 0.5 * dx * (std::fabs(g1) + std::fabs(g2));
+  if (s_f + w <= 0) return 0.0;
+  if (s_f - w >= 0) return eos.rho0_from_enthalpy(1.0 + s_f);
+  // The surface crosses the face: rho0 is zero on part of it and not smooth across the cut.
+  double sum = 0;
+  const double h = dx / samples;
+  for (int a = 0; a < samples; ++a)
+    for (int b = 0; b < samples; ++b) {
+      const double s = s_f + g1 * (-0.5 * dx + (a + 0.5) * h) + g2 * (-0.5 * dx + (b + 0.5) * h);
+      if (s > 0) sum += eos.rho0_from_enthalpy(1.0 + s);
+    }
+  return sum / (samples * samples);
+}
+
+namespace {
+
+using Index = std::ptrdiff_t;
+
+/// The finest level with the z = 0 mirror: reads at k = -1 go to the ghost layer (filled), and the
+/// unknown of a mirror point is that of its image (Psitilde is even in z).
+struct Lattice {
+  const Level& lv;
+  Index at(int i, int j, int k) const { return lv.at(i, j, k); }
+  Index image(int i, int j, int k) const { return lv.at(i, j, lv.z_symmetry ? std::abs(k) : k); }
+};
+
+constexpr int unit[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+
+/// A face from vertex L to L + e_d, with the flux through it F = const + sum coef * Psi(col).
+struct FaceFlux {
+  double a = 0;                 ///< the face coefficient a_f (0: no flux)
+  double constant = 0;          ///< -a phi^4 beta^d (the shift's part of -a phi^4 B^d)
+  double constant_xi = 0;       ///< -a phi^4 xi^d (the rotation's part, per unit Omegahat)
+  std::vector<std::pair<Index, double>> terms;
+};
+
+class Operator {
+ public:
+  Operator(const Level& lv, const Eos& eos, const PotentialCoefficients& c, const PotentialSettings& s)
+      : lat_{lv}, eos_(eos), c_(c), settings_(s) {}
+
+  double s_at(int i, int j, int k) const { return c_.level_set[lat_.at(i, j, k)]; }
+  bool in_box(int i, int j, int k) const {
+    return i >= c_.box[0][0] && i <= c_.box[0][1] && j >= c_.box[1][0] && j <= c_.box[1][1] && std::abs(k) <= c_.box[2][1] &&
+           (lat_.lv.z_symmetry || k >= c_.box[2][0]);
+  }
+
+  /// a_f of the face from (i, j, k) along d: the face average of rho0 times the mean of phi^2/(alpha h).
+  double coefficient(int i, int j, int k, int d) const {
+    const int i1 = i + unit[d][0], j1 = j + unit[d][1], k1 = k + unit[d][2];
+    if (!in_box(i, j, k) || !in_box(i1, j1, k1)) return 0.0;
+    const double s0 = s_at(i, j, k), s1 = s_at(i1, j1, k1);
+    const double s_f = 0.5 * (s0 + s1);
+    const double dx = lat_.lv.dx;
+    double g[2];
+    int n = 0;
+    for (int t = 0; t < 3; ++t) {
+      if (t == d) continue;
+      const int ti = unit[t][0], tj = unit[t][1], tk = unit[t][2];
+      if (!in_box(i + ti, j + tj, k + tk) || !in_box(i - ti, j - tj, k - tk) || !in_box(i1 + ti, j1 + tj, k1 + tk) ||
+          !in_box(i1 - ti, j1 - tj, k1 - tk)) {
+        g[n++] = 0.0;
+        continue;
+      }
+      g[n++] = (s_at(i + ti, j + tj, k + tk) - s_at(i - ti, j - tj, k - tk) + s_at(i1 + ti, j1 + tj, k1 + tk) -
+                s_at(i1 - ti, j1 - tj, k1 - tk)) /
+               (4 * dx);
+    }
+    const double rho = face_average_rho0(eos_, s_f, g[0], g[1], dx, settings_.face_samples);
+    if (!(rho > 0)) return 0.0;
+    auto weight = [&](Index p) {
+      const double ph = c_.phi[p], h = std::max(1.0 + c_.level_set[p], 1.0);
+      return ph * ph / (c_.alpha[p] * h);
+    };
+    return rho * 0.5 * (weight(lat_.at(i, j, k)) + weight(lat_.at(i1, j1, k1)));
+  }
+
+  /// Marks the physical vertices (a face with a > 0) and stores each face's a_f.
+  void classify() {
+    const Level& lv = lat_.lv;
+    physical_.assign(lv.size, 0);
+    for (int d = 0; d < 3; ++d) face_a_[d].assign(lv.size, 0.0);
+    for (int k = c_.box[2][0]; k <= c_.box[2][1]; ++k)
+      for (int j = c_.box[1][0]; j <= c_.box[1][1]; ++j)
+        for (int i = c_.box[0][0]; i <= c_.box[0][1]; ++i)
+          for (int d = 0; d < 3; ++d) {
+            const double a = coefficient(i, j, k, d);
+            if (!(a > 0)) continue;
+            face_a_[d][lat_.at(i, j, k)] = a;
+            physical_[lat_.image(i, j, k)] = 1;
+            physical_[lat_.image(i + unit[d][0], j + unit[d][1], k + unit[d][2])] = 1;
+          }
+    // The face from k = -1 to k = 0 is the image of the face from 0 to 1.
+  }
+
+  bool physical(int i, int j, int k) const { return in_box(i, j, k) && physical_[lat_.image(i, j, k)]; }
+
+  double a_face(int i, int j, int k, int d) const {
+    if (d == 2 && k == -1 && lat_.lv.z_symmetry) return face_a_[2][lat_.at(i, j, 0)];
+    if (!in_box(i, j, k)) return 0.0;
+    return face_a_[d][lat_.at(i, j, k)];
+  }
+
+  /// D_t Psi at vertex (i, j, k), physical neighbours only, as (unknown, coefficient) pairs.
+  void tangential(int i, int j, int k, int t, double scale, std::vector<std::pair<Index, double>>& out) const {
+    const int ti = unit[t][0], tj = unit[t][1], tk = unit[t][2];
+    const bool up = physical(i + ti, j + tj, k + tk), down = physical(i - ti, j - tj, k - tk);
+    const double dx = lat_.lv.dx;
+    const Index here = lat_.image(i, j, k), plus = lat_.image(i + ti, j + tj, k + tk), minus = lat_.image(i - ti, j - tj, k - tk);
+    if (up && down) {
+      out.push_back({plus, scale / (2 * dx)});
+      out.push_back({minus, -scale / (2 * dx)});
+    } else if (up) {
+      out.push_back({plus, scale / dx});
+      out.push_back({here, -scale / dx});
+    } else if (down) {
+      out.push_back({here, scale / dx});
+      out.push_back({minus, -scale / dx});
+    }
+  }
+
+  /// The flux through the face from (i, j, k) along d.
+  FaceFlux flux(int i, int j, int k, int d) const {
+    FaceFlux f;
+    f.a = a_face(i, j, k, d);
+    if (!(f.a > 0)) return f;
+    const int i1 = i + unit[d][0], j1 = j + unit[d][1], k1 = k + unit[d][2];
+    const Index p0 = lat_.at(i, j, k), p1 = lat_.at(i1, j1, k1);
+    const Level& lv = lat_.lv;
+    // Means of the end-node values; xi exactly at the face.
+    const double alpha2 = 0.5 * (c_.alpha[p0] * c_.alpha[p0] + c_.alpha[p1] * c_.alpha[p1]);
+    const double phi4 = 0.5 * (std::pow(c_.phi[p0], 4) + std::pow(c_.phi[p1], 4));
+    const double xf = lv.x(i) + 0.5 * lv.dx * unit[d][0], yf = lv.y(j) + 0.5 * lv.dx * unit[d][1];
+    const double xi[3] = {-yf, xf, 0.0};
+    double beta[3] = {0.0, 0.0, 0.0}, b[3];
+    for (int q = 0; q < 3; ++q) {
+      if (c_.beta[q]) beta[q] = 0.5 * (c_.beta[q][p0] + c_.beta[q][p1]);
+      b[q] = beta[q] + c_.omega_hat * xi[q];
+    }
+    const double dx = lv.dx;
+    const double m_nn = alpha2 - phi4 * b[d] * b[d];
+    f.terms.push_back({lat_.image(i1, j1, k1), f.a * m_nn / dx});
+    f.terms.push_back({lat_.image(i, j, k), -f.a * m_nn / dx});
+    for (int t = 0; t < 3; ++t) {
+      if (t == d) continue;
+      const double m_nt = -phi4 * b[d] * b[t];
+      if (m_nt == 0) continue;
+      tangential(i, j, k, t, 0.5 * f.a * m_nt, f.terms);
+      tangential(i1, j1, k1, t, 0.5 * f.a * m_nt, f.terms);
+    }
+    f.constant = -f.a * phi4 * beta[d];
+    f.constant_xi = -f.a * phi4 * xi[d];
+    return f;
+  }
+
+  const std::vector<std::uint8_t>& physical_map() const { return physical_; }
+
+ private:
+  Lattice lat_;
+  const Eos& eos_;
+  const PotentialCoefficients& c_;
+  const PotentialSettings& settings_;
+  std::vector<std::uint8_t> physical_;
+  std::vector<double> face_a_[3];
+};
+
+/// Fills `layers` layers of non-physical vertices about the physical ones by linear extrapolation
+/// from their set neighbours (the value a vertex entering the star starts from, and for plots).
+void extend(const Level& lv, double* psi, std::vector<std::uint8_t> set, const std::array<std::array<int, 2>, 3>& box,
+            int layers) {
+  auto inside = [&](int i, int j, int k) {
+    return i >= 1 && i <= lv.nx - 2 && j >= 1 && j <= lv.ny - 2 && k >= (lv.z_symmetry ? -1 : 1) && k <= lv.nz - 2;
+  };
+  auto image = [&](int i, int j, int k) { return lv.at(i, j, lv.z_symmetry ? std::abs(k) : k); };
+  for (int layer = 0; layer < layers; ++layer) {
+    std::vector<std::pair<Index, double>> found;
+    for (int k = std::max(box[2][0] - layers, lv.z_symmetry ? 0 : 1); k <= std::min(box[2][1] + layers, lv.nz - 2); ++k)
+      for (int j = std::max(box[1][0] - layers, 1); j <= std::min(box[1][1] + layers, lv.ny - 2); ++j)
+        for (int i = std::max(box[0][0] - layers, 1); i <= std::min(box[0][1] + layers, lv.nx - 2); ++i) {
+          const Index p = lv.at(i, j, k);
+          if (set[p]) continue;
+          double sum = 0;
+          int count = 0;
+          for (int d = 0; d < 3; ++d)
+            for (int sgn : {-1, 1}) {
+              const int i1 = i + sgn * unit[d][0], j1 = j + sgn * unit[d][1], k1 = k + sgn * unit[d][2];
+              if (!inside(i1, j1, k1) || !set[image(i1, j1, k1)]) continue;
+              const int i2 = i1 + sgn * unit[d][0], j2 = j1 + sgn * unit[d][1], k2 = k1 + sgn * unit[d][2];
+              const double v1 = psi[image(i1, j1, k1)];
+              sum += inside(i2, j2, k2) && set[image(i2, j2, k2)] ? 2 * v1 - psi[image(i2, j2, k2)] : v1;
+              ++count;
+            }
+          if (count) found.push_back({p, sum / count});
+        }
+    for (const auto& [p, v] : found) {
+      psi[p] = v;
+      set[static_cast<std::size_t>(p)] = 1;
+    }
+  }
+}
+
+struct Solution {
+  Eigen::VectorXd x;
+  int iterations = 0;
+  double residual = 0;
+};
+
+/// matrix x = rhs to the relative tolerance: BiCGSTAB first (cheapest); it can break down on this
+/// nonsymmetric system (a vanishing inner product), and then GMRES, which cannot, takes over.
+Solution solve(const Eigen::SparseMatrix<double, Eigen::RowMajor>& matrix, const Eigen::VectorXd& rhs,
+               const Eigen::VectorXd& guess, const PotentialSettings& settings) {
+  Solution out;
+  const double norm = rhs.norm();
+  if (!(norm > 0)) {
+    out.x = Eigen::VectorXd::Zero(rhs.size());
+    return out;
+  }
+  using Matrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+  Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> bicgstab;
+  bicgstab.setTolerance(settings.tolerance);
+  bicgstab.setMaxIterations(settings.max_iterations);
+  bicgstab.compute(matrix);
+  out.x = bicgstab.solveWithGuess(rhs, guess);
+  out.iterations = static_cast<int>(bicgstab.iterations());
+  out.residual = (matrix * out.x - rhs).norm() / norm;
+  if (bicgstab.info() == Eigen::Success && out.residual <= 10 * settings.tolerance) return out;
+  Eigen::GMRES<Matrix, Eigen::DiagonalPreconditioner<double>> gmres;
+  gmres.set_restart(60);
+  gmres.setTolerance(settings.tolerance);
+  gmres.setMaxIterations(settings.max_iterations);
+  gmres.compute(matrix);
+  out.x = gmres.solveWithGuess(rhs, guess);
+  out.iterations += static_cast<int>(gmres.iterations());
+  out.residual = (matrix * out.x - rhs).norm() / norm;
+  return out;
+}
+
+}  // namespace
+
+PotentialSolve solve_potential(Grid& grid, int psi_field, double* psi_xi, const Eos& eos, const PotentialCoefficients& c,
+                               const PotentialSettings& settings) {
+  const Level& lv = grid.finest();
+  double* psi = grid.data(psi_field, 0, 0);
+  Operator op(lv, eos, c, settings);
+  op.classify();
+  const std::vector<std::uint8_t>& physical = op.physical_map();
+  // The unknowns: the physical vertices (stored points).
+  std::vector<Index> column(lv.size, -1);
+  std::vector<std::array<int, 3>> vertex;
+  for (int k = c.box[2][0]; k <= c.box[2][1]; ++k)
+    for (int j = c.box[1][0]; j <= c.box[1][1]; ++j)
+      for (int i = c.box[0][0]; i <= c.box[0][1]; ++i)
+        if (k >= 0 && physical[lv.at(i, j, k)]) {
+          column[lv.at(i, j, k)] = static_cast<Index>(vertex.size());
+          vertex.push_back({i, j, k});
+        }
+  PotentialSolve out;
+  out.unknowns = static_cast<int>(vertex.size());
+  if (vertex.empty()) {
+    out.converged = true;
+    return out;
+  }
+  // The gauge vertex: the physical vertex nearest the star's centre.
+  std::size_t gauge = 0;
+  double nearest = 1e300;
+  for (std::size_t q = 0; q < vertex.size(); ++q) {
+    const auto& v = vertex[q];
+    const double d = std::hypot(lv.x(v[0]) - c.centre[0], lv.y(v[1]) - c.centre[1], lv.z(v[2]) - c.centre[2]);
+    if (d < nearest) nearest = d, gauge = q;
+  }
+  const auto n = static_cast<Eigen::Index>(vertex.size());
+  std::vector<Eigen::Triplet<double>> triplets;
+  // Two right-hand sides for one operator (M at the given Omegahat): the shift's source and the
+  // rotation's per unit Omegahat; Psitilde = Psitilde_beta + Omegahat Psitilde_xi.
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n), rhs_xi = Eigen::VectorXd::Zero(n), guess(n), guess_xi(n);
+  for (std::size_t q = 0; q < vertex.size(); ++q) {
+    const auto [i, j, k] = vertex[q];
+    const auto row = static_cast<Eigen::Index>(q);
+    guess[row] = psi[lv.at(i, j, k)] - c.omega_hat * psi_xi[lv.at(i, j, k)];
+    guess_xi[row] = psi_xi[lv.at(i, j, k)];
+    if (q == gauge) {
+      triplets.emplace_back(row, row, 1.0);
+      continue;
+    }
+    // R_v = sum_d (F(v, v + e_d) - F(v - e_d, v)) / dx, each row scaled by its diagonal below.
+    std::vector<std::pair<Index, double>> terms;
+    double constant = 0, constant_xi = 0;
+    for (int d = 0; d < 3; ++d) {
+      const FaceFlux up = op.flux(i, j, k, d);
+      const FaceFlux down = op.flux(i - unit[d][0], j - unit[d][1], k - unit[d][2], d);
+      for (const auto& t : up.terms) terms.push_back(t);
+      for (const auto& t : down.terms) terms.push_back({t.first, -t.second});
+      constant += up.constant - down.constant;
+      constant_xi += up.constant_xi - down.constant_xi;
+    }
+    double diagonal = 0;
+    for (const auto& [p, v] : terms)
+      if (p == lv.at(i, j, k)) diagonal += v;
+    const double scale = diagonal != 0 ? 1.0 / std::fabs(diagonal) : 1.0;
+    for (const auto& [p, v] : terms) triplets.emplace_back(row, static_cast<Eigen::Index>(column[static_cast<std::size_t>(p)]), v * scale);
+    rhs[row] = -constant * scale;
+    rhs_xi[row] = -constant_xi * scale;
+  }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> matrix(n, n);
+  matrix.setFromTriplets(triplets.begin(), triplets.end());
+  for (Eigen::Index q = 0; q < matrix.nonZeros(); ++q)
+    if (!std::isfinite(matrix.valuePtr()[q]))
+      throw core::RunFailure("flow_irrotational: a non-finite coefficient in the velocity potential's equation (the "
+                             "fields about the star are not finite)");
+  Solution beta_part = solve(matrix, rhs, guess, settings);
+  Solution xi_part = solve(matrix, rhs_xi, guess_xi, settings);
+  out.iterations = beta_part.iterations + xi_part.iterations;
+  out.residual = std::max(beta_part.residual, xi_part.residual);
+  out.converged = out.residual <= 10 * settings.tolerance;
+  // Outside the star (s <= 0) the physical vertices touch it only through faces of small a, and a
+  // vertex held by one such face carries the one-sided zero-flux condition d_n Psitilde = phi^4 B^n/M^nn,
+  // an O(1) error in its gradient that the vanishing a keeps out of the star. Its value is therefore
+  // not extended from: the extension starts from the star's own vertices, smooth up to the surface.
+  std::vector<std::uint8_t> set(lv.size, 0);
+  for (std::size_t q = 0; q < vertex.size(); ++q) {
+    const Index p = lv.at(vertex[q][0], vertex[q][1], vertex[q][2]);
+    const auto row = static_cast<Eigen::Index>(q);
+    psi_xi[p] = xi_part.x[row];
+    psi[p] = beta_part.x[row] + c.omega_hat * xi_part.x[row];
+    set[static_cast<std::size_t>(p)] = c.level_set[p] > 0;
+  }
+  extend(lv, psi, set, c.box, settings.extension_cells);
+  extend(lv, psi_xi, set, c.box, settings.extension_cells);
+  grid.fill_ghosts(psi_field, 0);
+  grid.fill_ghosts(psi_xi, Parity{}, 0);
+  return out;
+}
+
+}  // namespace bhnsid::flow_irrotational

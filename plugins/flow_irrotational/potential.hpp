@@ -1,0 +1,62 @@
+#pragma once
+// The velocity potential's equation (continuity under helical symmetry), hatted and divided by C_B:
+//   dhat_i [ a ( M_ij dhat_j Psitilde - phi^4 B^i ) ] = 0,   a = rho0 phi^2 / (alpha h),
+//   M_ij = alpha^2 delta_ij - phi^4 B^i B^j,   B = beta + Omegahat xi,
+// degenerate where rho0 -> 0, which carries the surface condition (no mass flux through the
+// surface): nothing is imposed there. Discretised as a conservative vertex-centred finite volume
+// whose face coefficient is the face average of a with rho0 from the linear reconstruction of the
+// enthalpy level set s = htilde - 1 across the face ("rho0 does the cutting", sub-cell accurate);
+// tangential derivatives at faces read physical vertices only. A vertex is physical when one of its
+// six faces has a > 0; the rest are not part of the system. Solved on the finest level with
+// BiCGSTAB (incomplete-LU preconditioner) over the physical vertices only, the constant fixed at
+// the vertex nearest the star's centre; then extended outside the star (s <= 0) by linear
+// extrapolation from its own vertices in a band.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "bhnsid/interfaces/eos.hpp"
+#include "bhnsid/interfaces/grid.hpp"
+
+namespace bhnsid::flow_irrotational {
+
+/// The finest-level fields the operator is built from (ghosts filled, so the z = 0 mirror reads).
+struct PotentialCoefficients {
+  const double* alpha = nullptr;
+  const double* phi = nullptr;
+  const double* beta[3] = {nullptr, nullptr, nullptr};  ///< null: beta = 0
+  const double* level_set = nullptr;                    ///< s = htilde - 1 (< 0 outside the star)
+  double omega_hat = 0;
+  std::array<double, 3> centre{};  ///< the star's centre: the gauge vertex
+  /// The box of vertices that may be physical: [lo, hi] per axis (stored indices).
+  std::array<std::array<int, 2>, 3> box{};
+};
+
+struct PotentialSolve {
+  int unknowns = 0;     ///< physical vertices
+  int iterations = 0;   ///< BiCGSTAB iterations
+  double residual = 0;  ///< relative residual reached
+  bool converged = false;
+};
+
+struct PotentialSettings {
+  double tolerance = 1e-10;  ///< relative residual of the linear solve
+  int face_samples = 16;     ///< sub-squares per side of a cut face for the face average of rho0
+  int max_iterations = 2000;
+  int extension_cells = 4;   ///< layers about the star (s > 0) filled by extrapolation
+};
+
+/// Solves for Psitilde on the finest level of `grid` (the field `psi`), physical vertices from the
+/// level set; returns what the solve did. The source is split as S = S_beta + Omegahat S_xi (the
+/// operator taken at the given Omegahat): `psi_xi` (a finest-level array) receives the rotation's
+/// part per unit Omegahat, and psi = psi_beta + Omegahat psi_xi; the current values of both start
+/// the solves.
+PotentialSolve solve_potential(Grid& grid, int psi, double* psi_xi, const Eos& eos, const PotentialCoefficients& c,
+                               const PotentialSettings& settings);
+
+/// Face average of rho0(1 + max(s, 0)) over a square face of side dx on which s is linear: s_f at
+/// its centre, slopes g1, g2 along its two axes. Exact (0 or the midpoint rule) where the face lies
+/// wholly outside or inside; a midpoint rule on samples x samples sub-squares where the surface cuts it.
+double face_average_rho0(const Eos& eos, double s_f, double g1, double g2, double dx, int samples);
+
+}  // namespace bhnsid::flow_irrotational
