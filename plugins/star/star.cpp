@@ -140,13 +140,16 @@ StepReport Star::step(double fraction) {
   StarConstants& now = fluid_->constants;
   report.before = now;
   report.after = now;
+  Flow& flow = fluid_->flow();
   if (!settings_.iterate) {
-    report.converged = true;
-    fluid_->converged = true;
+    // The density and the constants are held; a flow with a field of its own still follows the
+    // fields, and the star is settled once that field is.
+    report.change = flow.prepare(grid_, {now.sigma, now.omega_hat, now.bernoulli});
+    report.converged = report.change < settings_.tolerance;
+    fluid_->converged = report.converged;
     history_.push_back(report);
     return report;
   }
-  Flow& flow = fluid_->flow();
   // The first step with a hole starts Omegahat from Kepler; the flow sees that start too.
   const double omega_start = !hole_ ? now.omega_hat : now.omega_hat > 0 ? now.omega_hat : kepler_omega();
   const FlowConstants start{now.sigma, omega_start, now.bernoulli};
@@ -235,6 +238,7 @@ StepReport Star::step(double fraction) {
   const double m0_before = undone_rest_mass_ > 0 ? undone_rest_mass_ : fluid_->rest_mass();
   undone_rest_mass_ = 0;
   report.rest_mass_before = m0_before;
+  flow.set_constants(grid_, {report.after.sigma, report.after.omega_hat, report.after.bernoulli});
   report.matter_points = bernoulli_reset(report.after, alpha, phi);
   now.sigma = report.after.sigma;
   now.bernoulli = report.after.bernoulli;
@@ -321,9 +325,11 @@ int Star::bernoulli_reset(const StarConstants& next, const std::vector<double>& 
       // A point of the star next to one where the Bernoulli argument is negative: the star's
       // surface would be where the modelled lapse vanishes (the hole, the light cylinder).
       if (h[p] < 0)
-        throw RunFailure(fmt::format("star: the Bernoulli argument alpha^2 - phi^4 |beta + Omegahat xi|^2 "
-                                     "is negative next to the star at ({}, {}, {}) (sigma = {}, Omegahat = {})",
-                                     lv.x(q[0]), lv.y(q[1]), lv.z(q[2]), next.sigma, next.omega_hat));
+        throw RunFailure(fmt::format("star: the {} flow's first integral gives no enthalpy next to the star at ({}, "
+                                     "{}, {}) (sigma = {}, Omegahat = {}; for corotation alpha^2 - phi^4 |beta + "
+                                     "Omegahat xi|^2 < 0 there)",
+                                     fluid_->flow().kind(), lv.x(q[0]), lv.y(q[1]), lv.z(q[2]), next.sigma,
+                                     next.omega_hat));
       if (!in_star[p] && h[p] > 1) {
         in_star[p] = 1;
         todo.push_back({q[0], q[1], q[2]});

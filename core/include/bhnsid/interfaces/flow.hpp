@@ -41,8 +41,14 @@ class Flow : public core::Service {
 
   /// Called by the star at the start of each outer step, after the field solve, with the constants
   /// the step starts from (a first guess of Omegahat where none is known yet): a flow with a field
-  /// of its own (a velocity potential) solves it here.
-  virtual void prepare(Grid& /*grid*/, const FlowConstants& /*c*/) {}
+  /// of its own (a velocity potential) solves it here. Returns how much that field changed, relative
+  /// (0 for a flow without one): a star whose density is held (`iterate: false`) is settled only once
+  /// the flow is.
+  virtual double prepare(Grid& /*grid*/, const FlowConstants& /*c*/) { return 0.0; }
+  /// Called by the star after its Newton step with the constants it moves to, before its reset: a
+  /// flow whose own field depends on them (a potential on Omegahat) moves it as its axis model did,
+  /// so that the reset and the next field solve see the flow the Newton step assumed.
+  virtual void set_constants(Grid& /*grid*/, const FlowConstants& /*c*/) {}
 
   /// rho_E, S and j^i (fields::matter_energy, matter_trace, matter_momentum) on `level` from rho0,
   /// press, enthalpy and the current chi, alpha, beta of that level; 0 where rho0 = 0. One call per
