@@ -214,6 +214,16 @@ StepReport Star::step(double fraction) {
     }
   }
   const double omega = solved.omega_hat;
+  // A flow whose Newton model linearises its own field about the current Omegahat trusts it only so
+  // far: a longer step is shortened like a retreat's, every constant the same fraction of the way.
+  const double omega_limit = flow.omega_step_limit();
+  if (hole_ && now.omega_hat > 0 && omega_limit > 0) {
+    const double step = std::fabs(omega / now.omega_hat - 1);
+    if (step > omega_limit) {
+      fraction = std::min(fraction, omega_limit / step);
+      report.fraction = fraction;
+    }
+  }
   // A retreat's shorter step: every constant of the Newton solution the same fraction of the way,
   // so that the density stays between two consistent states.
   report.after.sigma = now.sigma + fraction * (solved.sigma - now.sigma);

@@ -80,6 +80,11 @@ class Flow : public core::Service {
   /// identically (corotation: alpha v = B).
   virtual bool solves_continuity() const { return false; }
 
+  /// The largest relative change of Omegahat one outer step may make (0: any): a flow whose axis
+  /// model linearises its own field about the current Omegahat trusts it that far, and the star
+  /// shortens a longer step (every constant the same fraction of the way).
+  virtual double omega_step_limit() const { return 0.0; }
+
   /// The star's Newton solve: freeze what the first integral reads at the axis points xhat = xs[p]
   /// (yhat = zhat = 0) from the last field solve and the flow's own fields, solved at `c`.
   virtual void freeze_axis(Grid& grid, const std::vector<double>& xs, const FlowConstants& c) = 0;
