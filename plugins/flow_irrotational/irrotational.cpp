@@ -87,11 +87,11 @@ const Lapse& Irrotational::lapse() const {
   return *lapse_;
 }
 
-void Irrotational::prepare(Grid& grid, const FlowConstants& c) {
+double Irrotational::prepare(Grid& grid, const FlowConstants& c) {
   const Level& lv = grid.finest();
   const Fields f = finest_fields(grid, lapse());
   const double* rho0 = grid.data(grid.field_id(fields::rho0), 0, 0);
-  const double* psi = grid.data(psi_, 0, 0);
+  double* psi = grid.data(psi_, 0, 0);
   // The star's box, widened by the band the level set and the extension need.
   constexpr int margin = 4;
   std::array<std::array<int, 2>, 3> box{{{lv.nx, -1}, {lv.ny, -1}, {lv.nz, -1}}};
@@ -122,11 +122,18 @@ void Irrotational::prepare(Grid& grid, const FlowConstants& c) {
             }
         if (!near) continue;
         const std::ptrdiff_t p = lv.at(i, j, k);
+        // The star's own level set: the enthalpy its last reset placed the matter by (the first
+        // integral with the modelled fields); before the first reset, the first integral now.
+        if (reset_enthalpy_.size() == lv.size) {
+          if (reset_enthalpy_[p] > 0) level_set[p] = reset_enthalpy_[p] - 1.0;
+          continue;
+        }
         const double b[3] = {f.beta[0][p] - c.omega_hat * lv.y(j), f.beta[1][p] + c.omega_hat * lv.x(i), f.beta[2][p]};
         const double g = first_integral_g(f.alpha[p], f.phi[p], b, gradient(lv, psi, nullptr, i, j, k));
         if (std::isfinite(g)) level_set[p] = c.bernoulli * g - 1.0;
       }
   grid.fill_ghosts(level_set.data(), Parity{}, 0);
+  level_set_ = level_set;
   PotentialCoefficients coefficients;
   coefficients.alpha = f.alpha.data();
   coefficients.phi = f.phi.data();
@@ -141,12 +148,38 @@ void Irrotational::prepare(Grid& grid, const FlowConstants& c) {
     if (r > best) best = r, coefficients.centre = {lv.x(i), 0.0, 0.0};
   }
   if (psi_xi_.size() != lv.size) psi_xi_.assign(lv.size, 0.0);
+  // How much the solve moves Psitilde in the star, relative to its size there.
+  std::vector<double> before(lv.size);
+  std::copy(psi, psi + lv.size, before.begin());
   last_ = solve_potential(grid, psi_, psi_xi_.data(), *eos_, coefficients, settings_);
+  psi_omega_ = c.omega_hat;
   ++solves_;
   if (!last_.converged)
     throw core::RunFailure(fmt::format("flow_irrotational: the velocity potential's solve did not converge ({} unknowns, "
                                        "{} iterations, relative residual {:.3e} against {:.1e})",
                                        last_.unknowns, last_.iterations, last_.residual, settings_.tolerance));
+  double change = 0, size = 0;
+  for (std::size_t p = 0; p < lv.size; ++p)
+    if (level_set[p] > 0) {
+      change = std::max(change, std::fabs(psi[p] - before[p]));
+      size = std::max(size, std::fabs(psi[p]));
+    }
+  return size > 0 ? change / size : change;
+}
+
+void Irrotational::set_constants(Grid& grid, const FlowConstants& c) {
+  // The potential's rotation part follows the Newton step's Omegahat at once (the shift's part waits
+  // for the next field solve), so that the reset and the next field solve see the flow that step
+  // chose: a first step from Kepler's Omega (60 % high with the paper's lapse) otherwise leaves the
+  // next field solve a momentum, and a shift, that cancel most of B at the star, and the next Newton
+  // step no lever arm.
+  const Level& lv = grid.finest();
+  if (psi_xi_.size() != lv.size || c.omega_hat == psi_omega_) return;
+  double* psi = grid.data(psi_, 0, 0);
+  const double change = c.omega_hat - psi_omega_;
+  for (std::size_t p = 0; p < lv.size; ++p) psi[p] += change * psi_xi_[p];
+  grid.fill_ghosts(psi_, 0);
+  psi_omega_ = c.omega_hat;
 }
 
 void Irrotational::update_sources(Grid& grid, int level, const FlowConstants& c) const {
@@ -227,6 +260,7 @@ void Irrotational::enthalpy(Grid& grid, const FlowConstants& c, const double* al
         const double g = first_integral_g(alpha[p], phi[p], b, gradient(lv, psi, nullptr, i, j, k));
         h[p] = std::isfinite(g) ? c.bernoulli * g : -1.0;
       }
+  reset_enthalpy_.assign(h, h + lv.size);
 }
 
 void Irrotational::first_integral(Grid& grid, const FlowConstants& c, double* out) const {
@@ -277,27 +311,64 @@ std::array<double, 2> Irrotational::potential_size(Grid& grid) const {
   return {grid.global_max(psi_max), grid.global_max(grad_max)};
 }
 
+namespace {
+
+/// dhat_y of `psi` at (x, 0, 0) from the axis points within four spacings whose y neighbours lie in
+/// the star (s > 0): their centred differences, fitted by a least-squares quadratic in x (a line
+/// with two points, the value with one). The surface points xhat = 1 and xhat_A sit where a centred
+/// stencil would read the extension outside the star, whose values move with the star's surface
+/// from one solve to the next.
+double axis_dy(const Level& lv, const double* psi, const std::vector<double>& level_set, double x) {
+  const int j0 = lv.n / 2;
+  std::vector<double> xs, ds;
+  for (int i = 1; i < lv.nx - 1; ++i) {
+    if (std::fabs(lv.x(i) - x) > 4 * lv.dx) continue;
+    const std::ptrdiff_t up = lv.at(i, j0 + 1, 0), down = lv.at(i, j0 - 1, 0);
+    if (!(level_set[up] > 0) || !(level_set[down] > 0)) continue;
+    xs.push_back(lv.x(i) - x);
+    ds.push_back((psi[up] - psi[down]) / (2 * lv.dx));
+  }
+  const std::size_t n = xs.size();
+  if (n == 0) return 0.0;
+  if (n == 1) return ds[0];
+  // Normal equations of d(x) = c0 + c1 x (+ c2 x^2), x relative to the point: d(point) = c0.
+  const int m = n >= 3 ? 3 : 2;
+  double a[3][3] = {}, r[3] = {};
+  for (std::size_t q = 0; q < n; ++q) {
+    const double basis[3] = {1.0, xs[q], xs[q] * xs[q]};
+    for (int u = 0; u < m; ++u) {
+      r[u] += basis[u] * ds[q];
+      for (int v = 0; v < m; ++v) a[u][v] += basis[u] * basis[v];
+    }
+  }
+  // Gaussian elimination on the small symmetric system.
+  for (int c = 0; c < m; ++c)
+    for (int row = c + 1; row < m; ++row) {
+      const double f = a[row][c] / a[c][c];
+      for (int v = c; v < m; ++v) a[row][v] -= f * a[c][v];
+      r[row] -= f * r[c];
+    }
+  double sol[3] = {};
+  for (int c = m - 1; c >= 0; --c) {
+    double t = r[c];
+    for (int v = c + 1; v < m; ++v) t -= a[c][v] * sol[v];
+    sol[c] = t / a[c][c];
+  }
+  return sol[0];
+}
+
+}  // namespace
+
 void Irrotational::freeze_axis(Grid& grid, const std::vector<double>& xs, const FlowConstants& c) {
   const Level& lv = grid.finest();
   const double* psi = grid.data(psi_, 0, 0);
-  if (psi_xi_.size() != lv.size) psi_xi_.assign(lv.size, 0.0);
-  std::vector<double> dy(lv.size, 0.0), dy_xi(lv.size, 0.0);
-  for (int k = 0; k < lv.nz; ++k)
-    for (int j = 0; j < lv.ny; ++j)
-      for (int i = 0; i < lv.nx; ++i) {
-        dy[lv.at(i, j, k)] = gradient(lv, psi, nullptr, i, j, k)[1];
-        dy_xi[lv.at(i, j, k)] = gradient(lv, psi_xi_.data(), nullptr, i, j, k)[1];
-      }
-  grid.fill_ghosts(dy.data(), Parity{}, 0);
-  grid.fill_ghosts(dy_xi.data(), Parity{}, 0);
+  if (level_set_.size() != lv.size) level_set_.assign(lv.size, -1.0);
   axis_x_ = xs;
   axis_p_.assign(xs.size(), 0.0);
-  axis_p_xi_.assign(xs.size(), 0.0);
   axis_beta_y_.assign(xs.size(), 0.0);
   const double* beta_y = grid.has_field(fields::shift) ? grid.data(grid.field_id(fields::shift), 1, 0) : nullptr;
   for (std::size_t p = 0; p < xs.size(); ++p) {
-    axis_p_[p] = grid.interpolate(dy.data(), Parity{}, 0, {xs[p], 0, 0});
-    axis_p_xi_[p] = grid.interpolate(dy_xi.data(), Parity{}, 0, {xs[p], 0, 0});
+    axis_p_[p] = axis_dy(lv, psi, level_set_, xs[p]);
     if (beta_y) axis_beta_y_[p] = grid.interpolate(beta_y, Parity{}, 0, {xs[p], 0, 0});
   }
   axis_omega_ = c.omega_hat;
@@ -305,18 +376,19 @@ void Irrotational::freeze_axis(Grid& grid, const std::vector<double>& xs, const 
 
 AxisResidual Irrotational::axis_residual(std::size_t p, double alpha, double phi, double omega_hat, double bernoulli,
                                          double enthalpy) const {
-  // F_P = C^2 G_P^2 - h_P^2, G^2 = (1 + u q)^2/alpha^2 - q^2/phi^4, u = beta^y + xhat Omegahat, with the
-  // potential's gradient q = dhat_y Psitilde moving with Omegahat as its source does: the potential is
-  // linear in B = beta + Omegahat xi, so q(Omegahat) = q_0 + (Omegahat - Omega_0) q_xi (q_xi from the
-  // rotation's part of the source; the operator's own B dependence, O(v^2), frozen). beta^y is frozen
-  // from the field solve, as in the corotating residual. With q frozen instead, the Newton step maps
-  // Omega to about Omega*^2/Omega and never converges.
-  const double x = axis_x_.at(p), q_xi = axis_p_xi_.at(p);
-  const double q = axis_p_.at(p) + (omega_hat - axis_omega_) * q_xi;
-  const double u = axis_beta_y_.at(p) + x * omega_hat;
-  const double l = 1.0 + u * q, dl = x * q + u * q_xi;
+  // F_P = C^2 G_P^2 - h_P^2, G^2 = (1 + u q)^2/alpha^2 - q^2/phi^4, with the potential's gradient
+  // q = dhat_y Psitilde and u = beta^y + xhat Omegahat both scaled with Omegahat: the potential is
+  // driven by B = beta + Omegahat xi, and beta by the star's momentum, which the potential carries
+  // (near the orbit the shift cancels about half of Omegahat xi at the star, so a model with beta
+  // frozen overshoots by two and the outer iteration oscillates). With q frozen, the Newton step
+  // maps Omega to Omega*^2/Omega and never converges.
+  const double x = axis_x_.at(p), w0 = axis_omega_;
+  const double ratio = w0 > 0 ? omega_hat / w0 : 1.0, dratio = w0 > 0 ? 1.0 / w0 : 0.0;
+  const double q = axis_p_.at(p) * ratio, dq = axis_p_.at(p) * dratio;
+  const double u = axis_beta_y_.at(p) * ratio + x * omega_hat, du = axis_beta_y_.at(p) * dratio + x;
+  const double l = 1.0 + u * q, dl = du * q + u * dq;
   const double phi2 = phi * phi, phi4 = phi2 * phi2, alpha2 = alpha * alpha;
-  const double g2 = l * l / alpha2 - q * q / phi4, dg2 = 2.0 * l * dl / alpha2 - 2.0 * q * q_xi / phi4;
+  const double g2 = l * l / alpha2 - q * q / phi4, dg2 = 2.0 * l * dl / alpha2 - 2.0 * q * dq / phi4;
   const double c2 = bernoulli * bernoulli;
   return {c2 * g2 - enthalpy * enthalpy, c2 * dg2, 2.0 * bernoulli * g2};
 }

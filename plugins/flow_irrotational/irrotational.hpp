@@ -28,13 +28,16 @@ class Irrotational final : public Flow {
 
   std::string kind() const override { return "irrotational"; }
   std::vector<std::string> source_inputs() const override { return {potential_field}; }
-  void prepare(Grid& grid, const FlowConstants& c) override;
+  double prepare(Grid& grid, const FlowConstants& c) override;
+  void set_constants(Grid& grid, const FlowConstants& c) override;
   void update_sources(Grid& grid, int level, const FlowConstants& c) const override;
   void velocity(Grid& grid, const FlowConstants& c, double* lorentz, double* const* v) const override;
   std::string acausal_matter(Grid&, const FlowConstants&) const override { return {}; }
   void enthalpy(Grid& grid, const FlowConstants& c, const double* alpha, const double* phi, double* h) const override;
   void first_integral(Grid& grid, const FlowConstants& c, double* out) const override;
   bool solves_continuity() const override { return true; }
+  /// The potential's scaling model (q, beta ∝ Omegahat) holds near the Omegahat it was solved at.
+  double omega_step_limit() const override { return 0.2; }
   void freeze_axis(Grid& grid, const std::vector<double>& xs, const FlowConstants& c) override;
   AxisResidual axis_residual(std::size_t p, double alpha, double phi, double omega_hat, double bernoulli,
                              double enthalpy) const override;
@@ -54,12 +57,17 @@ class Irrotational final : public Flow {
   int psi_ = -1;
   PotentialSolve last_;
   int solves_ = 0;
+  /// h = C_B G of the star's last reset (finest level): the level set of the next potential solve.
+  mutable std::vector<double> reset_enthalpy_;
   /// The rotation's part of Psitilde per unit Omegahat (finest level), from the last solve.
   std::vector<double> psi_xi_;
-  /// The axis points of the Newton solve: x, beta^y and dhat_y of Psitilde and of its rotation's
-  /// part there, and the Omegahat the potential was solved with.
-  std::vector<double> axis_x_, axis_beta_y_, axis_p_, axis_p_xi_;
+  /// The level set s = htilde - 1 of the last potential solve (finest level).
+  std::vector<double> level_set_;
+  /// The axis points of the Newton solve: x, beta^y and dhat_y Psitilde there, and the Omegahat of
+  /// the potential then.
+  std::vector<double> axis_x_, axis_beta_y_, axis_p_;
   double axis_omega_ = 0;
+  double psi_omega_ = 0;  ///< the Omegahat psi_tilde belongs to now (solved with, or scaled to)
 };
 
 }  // namespace bhnsid::flow_irrotational

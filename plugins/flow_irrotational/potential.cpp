@@ -179,34 +179,41 @@ class Operator {
   std::vector<double> face_a_[3];
 };
 
-/// Fills `layers` layers of non-physical vertices about the physical ones by linear extrapolation
-/// from their set neighbours (the value a vertex entering the star starts from, and for plots).
+/// Fills every vertex of the box (widened by one point) that is not in `set`, layer by layer from
+/// the set ones: the first `linear` layers by linear extrapolation from their set neighbours, the
+/// rest by the mean of them (bounded, where extrapolation would grow). The start of vertices that
+/// join the star, and what the centred gradients next to it read; no value from an earlier solve
+/// survives near the star (the star may shrink between solves).
 void extend(const Level& lv, double* psi, std::vector<std::uint8_t> set, const std::array<std::array<int, 2>, 3>& box,
-            int layers) {
+            int linear) {
   auto inside = [&](int i, int j, int k) {
     return i >= 1 && i <= lv.nx - 2 && j >= 1 && j <= lv.ny - 2 && k >= (lv.z_symmetry ? -1 : 1) && k <= lv.nz - 2;
   };
   auto image = [&](int i, int j, int k) { return lv.at(i, j, lv.z_symmetry ? std::abs(k) : k); };
-  for (int layer = 0; layer < layers; ++layer) {
+  const int k0 = std::max(box[2][0] - 1, lv.z_symmetry ? 0 : 1), k1 = std::min(box[2][1] + 1, lv.nz - 2);
+  const int j0 = std::max(box[1][0] - 1, 1), j1 = std::min(box[1][1] + 1, lv.ny - 2);
+  const int i0 = std::max(box[0][0] - 1, 1), i1 = std::min(box[0][1] + 1, lv.nx - 2);
+  for (int layer = 0;; ++layer) {
     std::vector<std::pair<Index, double>> found;
-    for (int k = std::max(box[2][0] - layers, lv.z_symmetry ? 0 : 1); k <= std::min(box[2][1] + layers, lv.nz - 2); ++k)
-      for (int j = std::max(box[1][0] - layers, 1); j <= std::min(box[1][1] + layers, lv.ny - 2); ++j)
-        for (int i = std::max(box[0][0] - layers, 1); i <= std::min(box[0][1] + layers, lv.nx - 2); ++i) {
+    for (int k = k0; k <= k1; ++k)
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
           const Index p = lv.at(i, j, k);
           if (set[p]) continue;
           double sum = 0;
           int count = 0;
           for (int d = 0; d < 3; ++d)
             for (int sgn : {-1, 1}) {
-              const int i1 = i + sgn * unit[d][0], j1 = j + sgn * unit[d][1], k1 = k + sgn * unit[d][2];
-              if (!inside(i1, j1, k1) || !set[image(i1, j1, k1)]) continue;
-              const int i2 = i1 + sgn * unit[d][0], j2 = j1 + sgn * unit[d][1], k2 = k1 + sgn * unit[d][2];
-              const double v1 = psi[image(i1, j1, k1)];
-              sum += inside(i2, j2, k2) && set[image(i2, j2, k2)] ? 2 * v1 - psi[image(i2, j2, k2)] : v1;
+              const int ia = i + sgn * unit[d][0], ja = j + sgn * unit[d][1], ka = k + sgn * unit[d][2];
+              if (!inside(ia, ja, ka) || !set[image(ia, ja, ka)]) continue;
+              const int ib = ia + sgn * unit[d][0], jb = ja + sgn * unit[d][1], kb = ka + sgn * unit[d][2];
+              const double v1 = psi[image(ia, ja, ka)];
+              sum += layer < linear && inside(ib, jb, kb) && set[image(ib, jb, kb)] ? 2 * v1 - psi[image(ib, jb, kb)] : v1;
               ++count;
             }
           if (count) found.push_back({p, sum / count});
         }
+    if (found.empty()) break;
     for (const auto& [p, v] : found) {
       psi[p] = v;
       set[static_cast<std::size_t>(p)] = 1;
@@ -322,8 +329,8 @@ PotentialSolve solve_potential(Grid& grid, int psi_field, double* psi_xi, const 
     if (!std::isfinite(matrix.valuePtr()[q]))
       throw core::RunFailure("flow_irrotational: a non-finite coefficient in the velocity potential's equation (the "
                              "fields about the star are not finite)");
-  Solution beta_part = solve(matrix, rhs, guess, settings);
-  Solution xi_part = solve(matrix, rhs_xi, guess_xi, settings);
+  const Solution beta_part = solve(matrix, rhs, guess, settings);
+  const Solution xi_part = solve(matrix, rhs_xi, guess_xi, settings);
   out.iterations = beta_part.iterations + xi_part.iterations;
   out.residual = std::max(beta_part.residual, xi_part.residual);
   out.converged = out.residual <= 10 * settings.tolerance;

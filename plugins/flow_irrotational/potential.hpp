@@ -43,14 +43,13 @@ struct PotentialSettings {
   double tolerance = 1e-10;  ///< relative residual of the linear solve
   int face_samples = 16;     ///< sub-squares per side of a cut face for the face average of rho0
   int max_iterations = 2000;
-  int extension_cells = 4;   ///< layers about the star (s > 0) filled by extrapolation
+  int extension_cells = 2;   ///< layers about the star (s > 0) filled by linear extrapolation (the rest of the box by means)
 };
 
 /// Solves for Psitilde on the finest level of `grid` (the field `psi`), physical vertices from the
-/// level set; returns what the solve did. The source is split as S = S_beta + Omegahat S_xi (the
-/// operator taken at the given Omegahat): `psi_xi` (a finest-level array) receives the rotation's
-/// part per unit Omegahat, and psi = psi_beta + Omegahat psi_xi; the current values of both start
-/// the solves.
+/// level set; returns what the solve did. The source is split as S = S_beta + Omegahat S_xi (one
+/// operator, taken at the given Omegahat): `psi_xi` (a finest-level array) receives the rotation's
+/// part per unit Omegahat, psi = psi_beta + Omegahat psi_xi; their current values start the solves.
 PotentialSolve solve_potential(Grid& grid, int psi, double* psi_xi, const Eos& eos, const PotentialCoefficients& c,
                                const PotentialSettings& settings);
 
