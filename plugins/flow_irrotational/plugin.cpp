@@ -32,9 +32,11 @@ void declare(core::PluginBuilder& b) {
   b.memory([](const Context& ctx, core::MemoryEstimate& m) {
     if (const auto* layout = ctx.services().find<GridLayout>(grid_layout_capability)) {
       layout->estimate_field(m, ctx.plugin(), potential_field, 1);
-      // The potential's solve copies alpha, phi, beta and the level set on the finest level.
-      m.add(ctx.plugin(), "scratch", fmt::format("nine finest-level scratch arrays at {}", layout->describe()),
-            9 * layout->field_bytes(core::Storage::finest_only));
+      // Finest-level arrays: the solve's copies of alpha, phi, beta and the level set, the face
+      // coefficients (3), the unknowns' index map, the rotation's part of the potential, the last
+      // reset's enthalpy and level set, the potential before the solve.
+      m.add(ctx.plugin(), "scratch", fmt::format("fourteen finest-level scratch arrays at {}", layout->describe()),
+            14 * layout->field_bytes(core::Storage::finest_only));
     }
   });
   b.real("tolerance")
