@@ -72,21 +72,6 @@ Field make_compact(const PointSet& n, int z_indices, bool zero = true) {
   return f;
 }
 
-// One grid component copied onto the points of a set (zero where the grid has no such field).
-Field copy(const Grid& grid, const PointSet& set, const char* name, int comp, int z_indices) {
-  if (!grid.has_field(name)) return make_compact(set, z_indices);
-  Field f = make_compact(set, z_indices, false);
-  const Level& lv = grid.finest();
-  const double* src = grid.data(grid.field_id(name), comp, 0);
-  const auto count = static_cast<std::ptrdiff_t>(set.points.size());
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t q = 0; q < count; ++q) {
-    const auto& p = set.points[static_cast<std::size_t>(q)];
-    f.v[static_cast<std::size_t>(q)] = src[lv.at(p[0], p[1], p[2])];
-  }
-  return f;
-}
-
 // A finest-level array (no ghosts read) copied onto the points of a set.
 Field copy_array(const Grid& grid, const PointSet& set, const double* src, int z_indices) {
   Field f = make_compact(set, z_indices, false);
@@ -98,6 +83,12 @@ Field copy_array(const Grid& grid, const PointSet& set, const double* src, int z
     f.v[static_cast<std::size_t>(q)] = src[lv.at(p[0], p[1], p[2])];
   }
   return f;
+}
+
+// One grid component copied onto the points of a set (zero where the grid has no such field).
+Field copy(const Grid& grid, const PointSet& set, const char* name, int comp, int z_indices) {
+  if (!grid.has_field(name)) return make_compact(set, z_indices);
+  return copy_array(grid, set, grid.data(grid.field_id(name), comp, 0), z_indices);
 }
 
 // Calls fn(i, j, k) for every point of the set, in parallel.

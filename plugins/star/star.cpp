@@ -163,39 +163,30 @@ StepReport Star::step(double fraction) {
     return flow.axis_residual(p, a, ph, w, c, h);
   };
   NewtonResult solved;
+  // The axis points and the sigma-model of alpha and phi there (without a hole model_sigma(s) = s).
+  std::vector<double> xs;
+  std::vector<AxisPoint> points;
+  const FieldModel model = [&](double s) {
+    const FrozenProfileSolution m = family_.frozen_profile(settings_.rho_max, rhat, model_sigma(s));
+    ModelValues v;
+    for (const AxisPoint& q : points) {
+      v.alpha.push_back(m.alpha_at(q.rhat));
+      v.phi.push_back(m.phi_at(q.rhat));
+    }
+    return v;
+  };
   if (!hole_) {
     // The centre (h = h_max) and the surface point xhat = 1 (h = 1); without a hole xhat_A is
     // equivalent to xhat = 1 by symmetry and Omegahat is held, so two points fix (sigma, C_B) (§9 T1).
-    const std::vector<double> xs{now.x_c, 1.0};
-    std::vector<AxisPoint> points(2);
-    points[0] = {0.0, at(alpha, xs[0]), at(phi, xs[0]), h_max};
-    points[1] = {1.0 - now.x_c, at(alpha, xs[1]), at(phi, xs[1]), 1.0};
-    const FieldModel model = [&](double s) {
-      const FrozenProfileSolution m = family_.frozen_profile(settings_.rho_max, rhat, s);
-      ModelValues v;
-      for (const AxisPoint& q : points) {
-        v.alpha.push_back(m.alpha_at(q.rhat));
-        v.phi.push_back(m.phi_at(q.rhat));
-      }
-      return v;
-    };
+    xs = {now.x_c, 1.0};
+    points = {{0.0, at(alpha, xs[0]), at(phi, xs[0]), h_max}, {1.0 - now.x_c, at(alpha, xs[1]), at(phi, xs[1]), 1.0}};
     flow.freeze_axis(grid_, xs, start);
     // C_B from the surface point at the old sigma: the surface equation alone fixes it there.
     solved = solve_sigma_bernoulli(points, model, residual, now.sigma, now.omega_hat, points[1].enthalpy * points[1].alpha);
   } else {
-    const std::vector<double> xs{1.0, settings_.x_a, now.x_c};
-    std::vector<AxisPoint> points(3);
+    xs = {1.0, settings_.x_a, now.x_c};
     for (std::size_t p = 0; p < 3; ++p)
-      points[p] = {std::fabs(xs[p] - now.x_c), at(alpha, xs[p]), at(phi, xs[p]), p == 2 ? h_max : 1.0};
-    const FieldModel model = [&](double s) {
-      const FrozenProfileSolution m = family_.frozen_profile(settings_.rho_max, rhat, model_sigma(s));
-      ModelValues v;
-      for (const AxisPoint& q : points) {
-        v.alpha.push_back(m.alpha_at(q.rhat));
-        v.phi.push_back(m.phi_at(q.rhat));
-      }
-      return v;
-    };
+      points.push_back({std::fabs(xs[p] - now.x_c), at(alpha, xs[p]), at(phi, xs[p]), p == 2 ? h_max : 1.0});
     flow.freeze_axis(grid_, xs, start);
     for (;;) {
       try {
