@@ -74,6 +74,45 @@ double first_integral_g(double alpha, double phi, const double b[3], const std::
   return alpha > 0 && l > 0 && g2 > 0 ? std::sqrt(g2) : nan;
 }
 
+/// Calls fn(i, j, k, p) for every stored point of a level, OpenMP over planes (the gradients need
+/// the indices, so for_stored_points_xy does not serve).
+template <class Fn>
+void for_each_point(const Level& lv, Fn&& fn) {
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < lv.nz; ++k)
+    for (int j = 0; j < lv.ny; ++j)
+      for (int i = 0; i < lv.nx; ++i) fn(i, j, k, lv.at(i, j, k));
+}
+
+/// The arrays of one level the flow reads; beta null without a shift equation.
+struct LevelFields {
+  const double *rho0, *press, *enthalpy, *chi, *puncture_phi, *psi;
+  const double* beta[3] = {nullptr, nullptr, nullptr};
+  double phi(std::ptrdiff_t p) const { return puncture_phi[p] + chi[p]; }
+};
+
+LevelFields level_fields(Grid& grid, int psi, int level) {
+  LevelFields f{grid.data(grid.field_id(fields::rho0), 0, level),  grid.data(grid.field_id(fields::press), 0, level),
+                grid.data(grid.field_id(fields::enthalpy), 0, level), grid.data(grid.field_id(fields::chi), 0, level),
+                grid.data(grid.field_id(fields::puncture_phi), 0, level), grid.data(psi, 0, level)};
+  if (grid.has_field(fields::shift))
+    for (int a = 0; a < 3; ++a) f.beta[a] = grid.data(grid.field_id(fields::shift), a, level);
+  return f;
+}
+
+/// B = beta + Omegahat xi at stored point (i, j) of a level.
+std::array<double, 3> frame_shift(const Level& lv, const LevelFields& f, double omega_hat, std::ptrdiff_t p, int i, int j) {
+  std::array<double, 3> b{-omega_hat * lv.y(j), omega_hat * lv.x(i), 0.0};
+  for (int a = 0; a < 3; ++a) b[static_cast<std::size_t>(a)] += f.beta[a] ? f.beta[a][p] : 0.0;
+  return b;
+}
+
+/// W = sqrt(1 + phi^-4 |p|^2/h^2), p = C_B dhat Psitilde.
+double lorentz(const std::array<double, 3>& g, double phi, double h, double bernoulli) {
+  const double phi2 = phi * phi, p2 = bernoulli * bernoulli * (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  return std::sqrt(1.0 + p2 / (phi2 * phi2 * h * h));
+}
+
 }  // namespace
 
 void Irrotational::attach(Grid& grid, const Lapse& lapse, const Eos& eos) {
@@ -184,114 +223,71 @@ void Irrotational::set_constants(Grid& grid, const FlowConstants& c) {
 
 void Irrotational::update_sources(Grid& grid, int level, const FlowConstants& c) const {
   const Level& lv = grid.level(level);
-  const double* rho0 = grid.data(grid.field_id(fields::rho0), 0, level);
-  const double* press = grid.data(grid.field_id(fields::press), 0, level);
-  const double* enthalpy = grid.data(grid.field_id(fields::enthalpy), 0, level);
-  const double* chi = grid.data(grid.field_id(fields::chi), 0, level);
-  const double* pphi = grid.data(grid.field_id(fields::puncture_phi), 0, level);
-  const double* psi = grid.data(psi_, 0, level);
+  const LevelFields f = level_fields(grid, psi_, level);
   double* energy = grid.data(grid.field_id(fields::matter_energy), 0, level);
   double* trace = grid.data(grid.field_id(fields::matter_trace), 0, level);
   const int mom = grid.field_id(fields::matter_momentum);
   double* j_up[3] = {grid.data(mom, 0, level), grid.data(mom, 1, level), grid.data(mom, 2, level)};
-  const double cb = c.bernoulli;
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < lv.nz; ++k)
-    for (int j = 0; j < lv.ny; ++j)
-      for (int i = 0; i < lv.nx; ++i) {
-        const std::ptrdiff_t p = lv.at(i, j, k);
-        if (!(rho0[p] > 0)) {
-          energy[p] = trace[p] = j_up[0][p] = j_up[1][p] = j_up[2][p] = 0.0;
-          continue;
-        }
-        const std::array<double, 3> g = gradient(lv, psi, nullptr, i, j, k);
-        const double phi = pphi[p] + chi[p], phi2 = phi * phi, inv_phi4 = 1.0 / (phi2 * phi2), h = enthalpy[p];
-        const double p2 = cb * cb * (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-        const double w2 = 1.0 + inv_phi4 * p2 / (h * h), w = std::sqrt(w2);
-        const double rho_h = rho0[p] * h;
-        energy[p] = rho_h * w2 - press[p];
-        trace[p] = rho_h * (w2 - 1.0) + 3.0 * press[p];
-        for (int a = 0; a < 3; ++a) j_up[a][p] = rho0[p] * w * inv_phi4 * cb * g[static_cast<std::size_t>(a)];
-      }
+  for_each_point(lv, [&](int i, int j, int k, std::ptrdiff_t p) {
+    if (!(f.rho0[p] > 0)) {
+      energy[p] = trace[p] = j_up[0][p] = j_up[1][p] = j_up[2][p] = 0.0;
+      return;
+    }
+    const std::array<double, 3> g = gradient(lv, f.psi, nullptr, i, j, k);
+    const double phi = f.phi(p), phi2 = phi * phi, h = f.enthalpy[p];
+    const double w = lorentz(g, phi, h, c.bernoulli), rho_h = f.rho0[p] * h;
+    energy[p] = rho_h * w * w - f.press[p];
+    trace[p] = rho_h * (w * w - 1.0) + 3.0 * f.press[p];
+    for (int a = 0; a < 3; ++a) j_up[a][p] = f.rho0[p] * w / (phi2 * phi2) * c.bernoulli * g[static_cast<std::size_t>(a)];
+  });
 }
 
-void Irrotational::velocity(Grid& grid, const FlowConstants& c, double* lorentz, double* const* v) const {
+void Irrotational::velocity(Grid& grid, const FlowConstants& c, double* lorentz_out, double* const* v) const {
   const Level& lv = grid.finest();
-  const double* rho0 = grid.data(grid.field_id(fields::rho0), 0, 0);
-  const double* enthalpy = grid.data(grid.field_id(fields::enthalpy), 0, 0);
-  const double* chi = grid.data(grid.field_id(fields::chi), 0, 0);
-  const double* pphi = grid.data(grid.field_id(fields::puncture_phi), 0, 0);
-  const double* psi = grid.data(psi_, 0, 0);
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < lv.nz; ++k)
-    for (int j = 0; j < lv.ny; ++j)
-      for (int i = 0; i < lv.nx; ++i) {
-        const std::ptrdiff_t p = lv.at(i, j, k);
-        if (!(rho0[p] > 0)) {
-          lorentz[p] = 1.0;
-          if (v)
-            for (int a = 0; a < 3; ++a) v[a][p] = 0.0;
-          continue;
-        }
-        // Physical-only stencils: the velocity in the last matter layer reads no extended value.
-        const std::array<double, 3> g = gradient(lv, psi, rho0, i, j, k);
-        const double phi = pphi[p] + chi[p], phi2 = phi * phi, inv_phi4 = 1.0 / (phi2 * phi2), h = enthalpy[p];
-        const double p2 = c.bernoulli * c.bernoulli * (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-        const double w = std::sqrt(1.0 + inv_phi4 * p2 / (h * h));
-        lorentz[p] = w;
-        if (v)
-          for (int a = 0; a < 3; ++a) v[a][p] = inv_phi4 * c.bernoulli * g[static_cast<std::size_t>(a)] / (h * w);
-      }
+  const LevelFields f = level_fields(grid, psi_, 0);
+  for_each_point(lv, [&](int i, int j, int k, std::ptrdiff_t p) {
+    if (!(f.rho0[p] > 0)) {
+      lorentz_out[p] = 1.0;
+      if (v)
+        for (int a = 0; a < 3; ++a) v[a][p] = 0.0;
+      return;
+    }
+    // Physical-only stencils: the velocity in the last matter layer reads no extended value.
+    const std::array<double, 3> g = gradient(lv, f.psi, f.rho0, i, j, k);
+    const double phi = f.phi(p), phi2 = phi * phi, h = f.enthalpy[p];
+    const double w = lorentz(g, phi, h, c.bernoulli);
+    lorentz_out[p] = w;
+    if (v)
+      for (int a = 0; a < 3; ++a) v[a][p] = c.bernoulli * g[static_cast<std::size_t>(a)] / (phi2 * phi2 * h * w);
+  });
 }
 
 void Irrotational::enthalpy(Grid& grid, const FlowConstants& c, const double* alpha, const double* phi, double* h) const {
   const Level& lv = grid.finest();
-  const double* psi = grid.data(psi_, 0, 0);
-  const double* beta[3] = {nullptr, nullptr, nullptr};
-  if (grid.has_field(fields::shift))
-    for (int a = 0; a < 3; ++a) beta[a] = grid.data(grid.field_id(fields::shift), a, 0);
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < lv.nz; ++k)
-    for (int j = 0; j < lv.ny; ++j)
-      for (int i = 0; i < lv.nx; ++i) {
-        const std::ptrdiff_t p = lv.at(i, j, k);
-        double b[3] = {-c.omega_hat * lv.y(j), c.omega_hat * lv.x(i), 0.0};
-        for (int a = 0; a < 3; ++a) b[a] += beta[a] ? beta[a][p] : 0.0;
-        const double g = first_integral_g(alpha[p], phi[p], b, gradient(lv, psi, nullptr, i, j, k));
-        h[p] = std::isfinite(g) ? c.bernoulli * g : -1.0;
-      }
+  const LevelFields f = level_fields(grid, psi_, 0);
+  for_each_point(lv, [&](int i, int j, int k, std::ptrdiff_t p) {
+    const std::array<double, 3> b = frame_shift(lv, f, c.omega_hat, p, i, j);
+    const double g = first_integral_g(alpha[p], phi[p], b.data(), gradient(lv, f.psi, nullptr, i, j, k));
+    h[p] = std::isfinite(g) ? c.bernoulli * g : -1.0;
+  });
   reset_enthalpy_.assign(h, h + lv.size);
 }
 
 void Irrotational::first_integral(Grid& grid, const FlowConstants& c, double* out) const {
   const Level& lv = grid.finest();
-  const double* rho0 = grid.data(grid.field_id(fields::rho0), 0, 0);
-  const double* enthalpy = grid.data(grid.field_id(fields::enthalpy), 0, 0);
-  const double* chi = grid.data(grid.field_id(fields::chi), 0, 0);
-  const double* pphi = grid.data(grid.field_id(fields::puncture_phi), 0, 0);
-  const double* psi = grid.data(psi_, 0, 0);
+  const LevelFields f = level_fields(grid, psi_, 0);
   const double* alpha = lapse_on(grid, lapse(), 0);
-  const double* beta[3] = {nullptr, nullptr, nullptr};
-  if (grid.has_field(fields::shift))
-    for (int a = 0; a < 3; ++a) beta[a] = grid.data(grid.field_id(fields::shift), a, 0);
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < lv.nz; ++k)
-    for (int j = 0; j < lv.ny; ++j)
-      for (int i = 0; i < lv.nx; ++i) {
-        const std::ptrdiff_t p = lv.at(i, j, k);
-        if (!(rho0[p] > 0)) {
-          out[p] = nan;
-          continue;
-        }
-        const std::array<double, 3> g = gradient(lv, psi, rho0, i, j, k);
-        const double phi = pphi[p] + chi[p], phi2 = phi * phi, h = enthalpy[p];
-        const double cb = c.bernoulli;
-        const double w = std::sqrt(1.0 + cb * cb * (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]) / (phi2 * phi2 * h * h));
-        double b[3] = {-c.omega_hat * lv.y(j), c.omega_hat * lv.x(i), 0.0};
-        for (int a = 0; a < 3; ++a) b[a] += beta[a] ? beta[a][p] : 0.0;
-        // h alpha W - B^i p_i with p = C_B dhat Psitilde.
-        out[p] = h * alpha[p] * w - cb * (b[0] * g[0] + b[1] * g[1] + b[2] * g[2]);
-      }
+  for_each_point(lv, [&](int i, int j, int k, std::ptrdiff_t p) {
+    if (!(f.rho0[p] > 0)) {
+      out[p] = nan;
+      return;
+    }
+    const std::array<double, 3> g = gradient(lv, f.psi, f.rho0, i, j, k);
+    const double h = f.enthalpy[p], w = lorentz(g, f.phi(p), h, c.bernoulli);
+    const std::array<double, 3> b = frame_shift(lv, f, c.omega_hat, p, i, j);
+    // h alpha W - B^i p_i with p = C_B dhat Psitilde.
+    out[p] = h * alpha[p] * w - c.bernoulli * (b[0] * g[0] + b[1] * g[1] + b[2] * g[2]);
+  });
 }
 
 std::array<double, 2> Irrotational::potential_size(Grid& grid) const {
