@@ -172,7 +172,6 @@ double Irrotational::prepare(Grid& grid, const FlowConstants& c) {
         if (std::isfinite(g)) level_set[p] = c.bernoulli * g - 1.0;
       }
   grid.fill_ghosts(level_set.data(), Parity{}, 0);
-  level_set_ = level_set;
   PotentialCoefficients coefficients;
   coefficients.alpha = f.alpha.data();
   coefficients.phi = f.phi.data();
@@ -309,19 +308,21 @@ std::array<double, 2> Irrotational::potential_size(Grid& grid) const {
 
 namespace {
 
-/// dhat_y of `psi` at (x, 0, 0) from the axis points within four spacings whose y neighbours lie in
-/// the star (s > 0): their centred differences, fitted by a least-squares quadratic in x (a line
-/// with two points, the value with one). The surface points xhat = 1 and xhat_A sit where a centred
-/// stencil would read the extension outside the star, whose values move with the star's surface
-/// from one solve to the next.
-double axis_dy(const Level& lv, const double* psi, const std::vector<double>& level_set, double x) {
+/// dhat_y of `psi` at (x, 0, 0) from the axis points within four spacings on the star's side of it
+/// (`inward` > 0: larger x, < 0: smaller, 0: both), at least half a spacing away: their centred
+/// differences, fitted by a least-squares quadratic in x (a line with two points, the value with
+/// one). The surface points xhat = 1 and xhat_A sit where a centred stencil would read the extension
+/// outside the star; and a choice of points by the star's level set would change with the vertex
+/// that lies on the surface, which enters and leaves the star from one step to the next. These
+/// points are fixed for the run (xhat = 1 and xhat_A are).
+double axis_dy(const Level& lv, const double* psi, double x, int inward) {
   const int j0 = lv.n / 2;
   std::vector<double> xs, ds;
   for (int i = 1; i < lv.nx - 1; ++i) {
-    if (std::fabs(lv.x(i) - x) > 4 * lv.dx) continue;
+    const double d = lv.x(i) - x;
+    if (std::fabs(d) > 4 * lv.dx || (inward != 0 && d * inward < 0.5 * lv.dx)) continue;
     const std::ptrdiff_t up = lv.at(i, j0 + 1, 0), down = lv.at(i, j0 - 1, 0);
-    if (!(level_set[up] > 0) || !(level_set[down] > 0)) continue;
-    xs.push_back(lv.x(i) - x);
+    xs.push_back(d);
     ds.push_back((psi[up] - psi[down]) / (2 * lv.dx));
   }
   const std::size_t n = xs.size();
@@ -358,13 +359,20 @@ double axis_dy(const Level& lv, const double* psi, const std::vector<double>& le
 void Irrotational::freeze_axis(Grid& grid, const std::vector<double>& xs, const FlowConstants& c) {
   const Level& lv = grid.finest();
   const double* psi = grid.data(psi_, 0, 0);
-  if (level_set_.size() != lv.size) level_set_.assign(lv.size, -1.0);
   axis_x_ = xs;
   axis_p_.assign(xs.size(), 0.0);
   axis_beta_y_.assign(xs.size(), 0.0);
   const double* beta_y = grid.has_field(fields::shift) ? grid.data(grid.field_id(fields::shift), 1, 0) : nullptr;
+  // The star's side of each point: towards the one of them with the most matter (the centre).
+  const double* rho0 = grid.data(grid.field_id(fields::rho0), 0, 0);
+  double centre = xs.empty() ? 0.0 : xs[0], densest = -1;
+  for (const double x : xs) {
+    const double r = grid.interpolate(rho0, Parity{}, 0, {x, 0, 0});
+    if (r > densest) densest = r, centre = x;
+  }
   for (std::size_t p = 0; p < xs.size(); ++p) {
-    axis_p_[p] = axis_dy(lv, psi, level_set_, xs[p]);
+    const int inward = xs[p] == centre ? 0 : xs[p] < centre ? 1 : -1;
+    axis_p_[p] = axis_dy(lv, psi, xs[p], inward);
     if (beta_y) axis_beta_y_[p] = grid.interpolate(beta_y, Parity{}, 0, {xs[p], 0, 0});
   }
   axis_omega_ = c.omega_hat;

@@ -61,8 +61,6 @@ class Irrotational final : public Flow {
   mutable std::vector<double> reset_enthalpy_;
   /// The rotation's part of Psitilde per unit Omegahat (finest level), from the last solve.
   std::vector<double> psi_xi_;
-  /// The level set s = htilde - 1 of the last potential solve (finest level).
-  std::vector<double> level_set_;
   /// The axis points of the Newton solve: x, beta^y and dhat_y Psitilde there, and the Omegahat of
   /// the potential then.
   std::vector<double> axis_x_, axis_beta_y_, axis_p_;
