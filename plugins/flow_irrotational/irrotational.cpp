@@ -191,7 +191,6 @@ double Irrotational::prepare(Grid& grid, const FlowConstants& c) {
   std::copy(psi, psi + lv.size, before.begin());
   last_ = solve_potential(grid, psi_, psi_xi_.data(), *eos_, coefficients, settings_);
   psi_omega_ = c.omega_hat;
-  ++solves_;
   if (!last_.converged)
     throw core::RunFailure(fmt::format("flow_irrotational: the velocity potential's solve did not converge ({} unknowns, "
                                        "{} iterations, relative residual {:.3e} against {:.1e})",

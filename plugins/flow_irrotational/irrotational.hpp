@@ -47,7 +47,6 @@ class Irrotational final : public Flow {
   /// max |Psitilde - Psitilde(centre)| over the star's matter points (0 for a star at rest in a
   /// rotating frame, up to the discretisation), and max |dhat Psitilde| there.
   std::array<double, 2> potential_size(Grid& grid) const;
-  int solves() const { return solves_; }
 
  private:
   const Lapse& lapse() const;
@@ -56,7 +55,6 @@ class Irrotational final : public Flow {
   const Eos* eos_ = nullptr;
   int psi_ = -1;
   PotentialSolve last_;
-  int solves_ = 0;
   /// h = C_B G of the star's last reset (finest level): the level set of the next potential solve.
   mutable std::vector<double> reset_enthalpy_;
   /// The rotation's part of Psitilde per unit Omegahat (finest level), from the last solve.
