@@ -16,11 +16,12 @@ namespace {
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
-/// dhat Psitilde at an interior stored point of a level. `matter` null: centred differences through
-/// whatever the neighbours hold (the extension outside the star). Otherwise only neighbours with
-/// rho0 > 0 are read (one-sided next to the surface, 0 with neither): the physical-only stencil of
-/// the velocities a user reads. Psitilde is even in z, so d_z vanishes on the plane z = 0.
-std::array<double, 3> gradient(const Level& lv, const double* psi, const double* matter, int i, int j, int k) {
+/// dhat Psitilde at an interior stored point of a level. `solved` null: centred differences through
+/// whatever the neighbours hold (the extension outside the star). Otherwise only neighbours the
+/// potential was solved at and extended from are read (one-sided next to the surface, 0 with
+/// neither): the stencil of the velocities a user reads. Psitilde is even in z, so d_z vanishes on
+/// the plane z = 0.
+std::array<double, 3> gradient(const Level& lv, const double* psi, const std::uint8_t* solved, int i, int j, int k) {
   std::array<double, 3> g{0.0, 0.0, 0.0};
   if (i < 1 || i > lv.nx - 2 || j < 1 || j > lv.ny - 2 || k > lv.nz - 2 || (k < 1 && !lv.z_symmetry)) return g;
   const std::ptrdiff_t p = lv.at(i, j, k);
@@ -28,11 +29,11 @@ std::array<double, 3> gradient(const Level& lv, const double* psi, const double*
   for (int d = 0; d < 3; ++d) {
     if (d == 2 && k == 0 && lv.z_symmetry) continue;
     const std::ptrdiff_t up = p + step[d], down = p - step[d];
-    if (!matter) {
+    if (!solved) {
       g[d] = (psi[up] - psi[down]) / (2 * lv.dx);
       continue;
     }
-    const bool u = matter[up] > 0, w = matter[down] > 0;
+    const bool u = solved[up] != 0, w = solved[down] != 0;
     g[d] = u && w ? (psi[up] - psi[down]) / (2 * lv.dx) : u ? (psi[up] - psi[p]) / lv.dx : w ? (psi[p] - psi[down]) / lv.dx : 0.0;
   }
   return g;
@@ -179,6 +180,10 @@ double Irrotational::prepare(Grid& grid, const FlowConstants& c) {
   coefficients.level_set = level_set.data();
   coefficients.omega_hat = c.omega_hat;
   coefficients.box = box;
+  if (held_system_.size() == lv.size) {
+    coefficients.held_system = held_system_.data();
+    coefficients.held_source = held_source_.data();
+  }
   // The gauge vertex: the density maximum's axis point.
   double best = -1;
   for (int i = box[0][0]; i <= box[0][1]; ++i) {
@@ -201,7 +206,17 @@ double Irrotational::prepare(Grid& grid, const FlowConstants& c) {
       change = std::max(change, std::fabs(psi[p] - before[p]));
       size = std::max(size, std::fabs(psi[p]));
     }
-  return size > 0 ? change / size : change;
+  change = size > 0 ? change / size : change;
+  // Once the star has settled, a vertex that has been in the system (or among the extension's
+  // sources) stays there. The vertex on the surface otherwise enters and leaves with each reset, and
+  // with it the tangential stencils and the extension's start: a map with jumps, about which the
+  // outer iteration cycled (period 2 to 12, star change 1e-5 to 1e-4) instead of converging.
+  source_ = last_.source;
+  if (change < settle_change) {
+    held_system_ = last_.system;
+    held_source_ = last_.source;
+  }
+  return change;
 }
 
 void Irrotational::set_constants(Grid& grid, const FlowConstants& c) {
@@ -251,7 +266,7 @@ void Irrotational::velocity(Grid& grid, const FlowConstants& c, double* lorentz_
       return;
     }
     // Physical-only stencils: the velocity in the last matter layer reads no extended value.
-    const std::array<double, 3> g = gradient(lv, f.psi, f.rho0, i, j, k);
+    const std::array<double, 3> g = gradient(lv, f.psi, solved_mask(lv), i, j, k);
     const double phi = f.phi(p), phi2 = phi * phi, h = f.enthalpy[p];
     const double w = lorentz(g, phi, h, c.bernoulli);
     lorentz_out[p] = w;
@@ -280,12 +295,16 @@ void Irrotational::first_integral(Grid& grid, const FlowConstants& c, double* ou
       out[p] = nan;
       return;
     }
-    const std::array<double, 3> g = gradient(lv, f.psi, f.rho0, i, j, k);
+    const std::array<double, 3> g = gradient(lv, f.psi, solved_mask(lv), i, j, k);
     const double h = f.enthalpy[p], w = lorentz(g, f.phi(p), h, c.bernoulli);
     const std::array<double, 3> b = frame_shift(lv, f, c.omega_hat, p, i, j);
     // h alpha W - B^i p_i with p = C_B dhat Psitilde.
     out[p] = h * alpha[p] * w - c.bernoulli * (b[0] * g[0] + b[1] * g[1] + b[2] * g[2]);
   });
+}
+
+const std::uint8_t* Irrotational::solved_mask(const Level& lv) const {
+  return source_.size() == lv.size ? source_.data() : nullptr;
 }
 
 std::array<double, 2> Irrotational::potential_size(Grid& grid) const {
@@ -299,7 +318,7 @@ std::array<double, 2> Irrotational::potential_size(Grid& grid) const {
         const std::ptrdiff_t p = lv.at(i, j, k);
         if (!(rho0[p] > 0)) continue;
         psi_max = std::max(psi_max, std::fabs(psi[p]));
-        const std::array<double, 3> g = gradient(lv, psi, rho0, i, j, k);
+        const std::array<double, 3> g = gradient(lv, psi, solved_mask(lv), i, j, k);
         grad_max = std::max(grad_max, std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]));
       }
   return {grid.global_max(psi_max), grid.global_max(grad_max)};

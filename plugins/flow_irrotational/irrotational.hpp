@@ -50,6 +50,10 @@ class Irrotational final : public Flow {
 
  private:
   const Lapse& lapse() const;
+  /// The vertices the last solve extended from (null before the first): the velocity stencils.
+  const std::uint8_t* solved_mask(const Level& lv) const;
+  /// The relative change of Psitilde in the star below which the star counts as settled.
+  static constexpr double settle_change = 1e-2;
   PotentialSettings settings_;
   const Lapse* lapse_ = nullptr;
   const Eos* eos_ = nullptr;
@@ -64,6 +68,8 @@ class Irrotational final : public Flow {
   std::vector<double> axis_x_, axis_beta_y_, axis_p_;
   double axis_omega_ = 0;
   double psi_omega_ = 0;  ///< the Omegahat psi_tilde belongs to now (solved with, or scaled to)
+  /// The last solve's system and extension sources, and those held since the star settled.
+  std::vector<std::uint8_t> source_, held_system_, held_source_;
 };
 
 }  // namespace bhnsid::flow_irrotational
