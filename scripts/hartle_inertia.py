@@ -5,7 +5,7 @@ bhnsid: the TOV equations in areal coordinates with the frame-dragging equation
 integrated from the centre with omega_bar(0) = 1 to the surface R; outside, omega = 2J/r^3, so
 J = R^4 omega_bar'(R)/6 and Omega = omega_bar(R) + 2J/R^3, I = J/Omega. Also prints the integral
 without frame dragging, I_0 = (8 pi/3) Int r^4 (rho + P) e^{(lambda - nu)/2} dr, and omega_bar/Omega at the
-centre. The reference of the star plugin's spin test (tests/plugins/star/test_spin.cpp).
+centre, and the rest mass M0 = 4 pi Int r^2 rho0 e^{lambda/2} dr. The reference of the star plugin's spin test (tests/plugins/star/test_spin.cpp).
 Usage: scripts/hartle_inertia.py [RHO_C ...]   (default 0.01 0.05 0.1); needs numpy and scipy.
 """
 import sys
@@ -49,15 +49,18 @@ def star(rho_c):
     rho = np.array([energy_density(p) if p > 0 else 0.0 for p in sol.y[1]])
     integrand = sol.t ** 4 * (rho + sol.y[1]) * np.exp(-nu_all / 2.0) / np.sqrt(1.0 - 2.0 * sol.y[0] / sol.t)
     no_drag = 8.0 * np.pi / 3.0 * np.trapz(integrand, sol.t)
-    return m, radius, j_spin / omega, no_drag, 1.0 / omega
+    rho0 = np.sqrt(np.clip(sol.y[1], 0.0, None))
+    rest_mass = 4.0 * np.pi * np.trapz(sol.t ** 2 * rho0 / np.sqrt(1.0 - 2.0 * sol.y[0] / sol.t), sol.t)
+    return m, radius, j_spin / omega, no_drag, 1.0 / omega, rest_mass
 
 
 def main():
     densities = [float(a) for a in sys.argv[1:]] or [0.01, 0.05, 0.1]
-    print("rho_c\tM\tR_areal\tI\tI_no_drag\tomega_bar_c/Omega\tI/(M R^2)")
+    print("rho_c\tM\tM0\tR_areal\tI\tI_no_drag\tomega_bar_c/Omega\tI/(M R^2)")
     for rho_c in densities:
-        m, radius, inertia, no_drag, centre = star(rho_c)
-        print(f"{rho_c}\t{m:.7f}\t{radius:.7f}\t{inertia:.7f}\t{no_drag:.7f}\t{centre:.5f}\t{inertia / (m * radius ** 2):.5f}")
+        m, radius, inertia, no_drag, centre, rest_mass = star(rho_c)
+        print(f"{rho_c}\t{m:.7f}\t{rest_mass:.7f}\t{radius:.7f}\t{inertia:.7f}\t{no_drag:.7f}\t{centre:.5f}\t"
+              f"{inertia / (m * radius ** 2):.5f}")
 
 
 if __name__ == "__main__":

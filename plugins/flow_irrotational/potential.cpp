@@ -109,6 +109,35 @@ class Operator {
     // The face from k = -1 to k = 0 is the image of the face from 0 to 1.
   }
 
+  /// Closes every face outside the body of open faces connected to vertex `start`: an island (a
+  /// pair of vertices above h = 1 off the star's tip near its Roche limit) carries a potential of its
+  /// own that the gauge does not fix, and made the system singular (relative residuals of 1e-4
+  /// after factorisation).
+  void keep_connected(const std::array<int, 3>& start) {
+    const Level& lv = lat_.lv;
+    std::vector<std::uint8_t> reached(lv.size, 0);
+    std::vector<std::array<int, 3>> stack{start};
+    reached[lat_.image(start[0], start[1], start[2])] = 1;
+    while (!stack.empty()) {
+      const auto [i, j, k] = stack.back();
+      stack.pop_back();
+      for (int d = 0; d < 3; ++d)
+        for (int sgn : {-1, 1}) {
+          const int ia = i + sgn * unit[d][0], ja = j + sgn * unit[d][1], ka = k + sgn * unit[d][2];
+          const double a = sgn > 0 ? a_face(i, j, k, d) : a_face(ia, ja, ka, d);
+          if (!(a > 0) || !in_box(ia, ja, ka)) continue;
+          const Index q = lat_.image(ia, ja, ka);
+          if (reached[q]) continue;
+          reached[q] = 1;
+          stack.push_back({ia, ja, lv.z_symmetry ? std::abs(ka) : ka});
+        }
+    }
+    for (int d = 0; d < 3; ++d)
+      for (std::size_t q = 0; q < lv.size; ++q)
+        if (!reached[q]) face_a_[d][q] = 0.0;
+    physical_ = std::move(reached);
+  }
+
   /// Keeps the held vertices of the box in the system.
   void hold(const std::uint8_t* held) {
     if (!held) return;
@@ -319,6 +348,23 @@ PotentialSolve solve_potential(Grid& grid, int psi_field, double* psi_xi, const 
   const Lattice lat{lv};
   Operator op(lv, eos, c, settings);
   op.classify();
+  // The gauge vertex (Psitilde = 0 there): the vertex with an open face nearest the star's centre.
+  // The body of open faces connected to it is the system.
+  PotentialSolve out;
+  std::array<int, 3> gauge_vertex{-1, -1, -1};
+  double nearest = 1e300;
+  for (int k = std::max(c.box[2][0], 0); k <= c.box[2][1]; ++k)
+    for (int j = c.box[1][0]; j <= c.box[1][1]; ++j)
+      for (int i = c.box[0][0]; i <= c.box[0][1]; ++i) {
+        if (!op.physical(i, j, k)) continue;
+        const double d = std::hypot(lv.x(i) - c.centre[0], lv.y(j) - c.centre[1], lv.z(k) - c.centre[2]);
+        if (d < nearest) nearest = d, gauge_vertex = {i, j, k};
+      }
+  if (gauge_vertex[0] < 0) {
+    out.converged = true;
+    return out;
+  }
+  op.keep_connected(gauge_vertex);
   op.hold(c.held_system);
   const double coupling = settings.coupling * op.largest_face();
   const std::vector<std::uint8_t>& physical = op.physical_map();
@@ -332,20 +378,8 @@ PotentialSolve solve_potential(Grid& grid, int psi_field, double* psi_xi, const 
           column[lv.at(i, j, k)] = static_cast<Index>(vertex.size());
           vertex.push_back({i, j, k});
         }
-  PotentialSolve out;
   out.unknowns = static_cast<int>(vertex.size());
-  if (vertex.empty()) {
-    out.converged = true;
-    return out;
-  }
-  // The gauge vertex: the physical vertex nearest the star's centre.
-  std::size_t gauge = 0;
-  double nearest = 1e300;
-  for (std::size_t q = 0; q < vertex.size(); ++q) {
-    const auto& v = vertex[q];
-    const double d = std::hypot(lv.x(v[0]) - c.centre[0], lv.y(v[1]) - c.centre[1], lv.z(v[2]) - c.centre[2]);
-    if (d < nearest) nearest = d, gauge = q;
-  }
+  const auto gauge = static_cast<std::size_t>(column[lv.at(gauge_vertex[0], gauge_vertex[1], gauge_vertex[2])]);
   const auto n = static_cast<Eigen::Index>(vertex.size());
   std::vector<Eigen::Triplet<double>> triplets;
   // Two right-hand sides for one operator (M at the given Omegahat): the shift's source and the
