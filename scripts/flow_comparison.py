@@ -71,6 +71,7 @@ def main():
     p.add_argument("corotating")
     p.add_argument("irrotational")
     p.add_argument("--target", default="0.75", help="M0/(M0)_max of the sequences, as the tables print it")
+    p.add_argument("--grid", help="one grid's values (as n128_dx0.03) instead of the error model's Q_e")
     a = p.parse_args()
     co, irr = load(a.corotating), load(a.irrotational)
     if [grid_name(g) for g in co["grids"]] != [grid_name(g) for g in irr["grids"]]:
@@ -79,9 +80,13 @@ def main():
     inertia, rho_c = inertia_of_rest_mass(m0)
     keys = ("Omega_M0", "J", "E_b_irreducible")
     cols = {"co": columns(co, a.target, keys), "irr": columns(irr, a.target, keys)}
-    label = "Q_e (three grids)" if len(co["grids"]) == 3 else grid_name(co["grids"][0])
+    names = [grid_name(g) for g in co["grids"]]
+    if a.grid is not None and a.grid not in names:
+        sys.exit(f"flow_comparison: no grid {a.grid} in the sequences ({', '.join(names)})")
+    label = a.grid or ("Q_e (three grids)" if len(names) == 3 else names[0])
+    pick = (lambda seq, v: v[names.index(a.grid)]) if a.grid else extrapolate
     print(f"M0 = {m0:.6f}: isolated star rho_c = {rho_c:.6f}, I = {inertia:.6f} (Hartle); values: {label}")
-    best = {f: {x: {k: extrapolate(co, v[k]) for k in keys} for x, v in c.items()} for f, c in cols.items()}
+    best = {f: {x: {k: pick(co, v[k]) for k in keys} for x, v in c.items()} for f, c in cols.items()}
     irr_points = sorted((v["Omega_M0"], v["J"], v["E_b_irreducible"]) for v in best["irr"].values())
     if len(irr_points) < 2:
         sys.exit("flow_comparison: fewer than two irrotational points converged on every grid")
