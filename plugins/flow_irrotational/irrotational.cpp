@@ -265,7 +265,8 @@ void Irrotational::velocity(Grid& grid, const FlowConstants& c, double* lorentz_
         for (int a = 0; a < 3; ++a) v[a][p] = 0.0;
       return;
     }
-    // Physical-only stencils: the velocity in the last matter layer reads no extended value.
+    // Stencils through the extension's sources only: the velocity in the last matter layer reads no
+    // extended value.
     const std::array<double, 3> g = gradient(lv, f.psi, solved_mask(lv), i, j, k);
     const double phi = f.phi(p), phi2 = phi * phi, h = f.enthalpy[p];
     const double w = lorentz(g, phi, h, c.bernoulli);
