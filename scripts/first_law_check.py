@@ -16,13 +16,14 @@ import sys
 import numpy as np
 
 
-def load(d):
+def load(d, tool="first_law_check"):
+    """The sequence.json of sequence directory d; exits with `tool`'s message when it cannot be read."""
     path = os.path.join(d, "sequence.json")
     try:
         with open(path) as f:
             return json.load(f)
     except (OSError, ValueError) as e:
-        sys.exit(f"first_law_check: {path}: {e}")
+        sys.exit(f"{tool}: {path}: {e}")
 
 
 def main():

@@ -12,7 +12,6 @@ printed beside them. Needs NumPy and SciPy.
 Usage: scripts/flow_comparison.py COROTATING_DIR IRROTATIONAL_DIR [--target 0.75]
 """
 import argparse
-import json
 import os
 import sys
 
@@ -21,15 +20,7 @@ from scipy.optimize import brentq
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import hartle_inertia  # noqa: E402
-
-
-def load(d):
-    path = os.path.join(d, "sequence.json")
-    try:
-        with open(path) as f:
-            return json.load(f)
-    except (OSError, ValueError) as e:
-        sys.exit(f"flow_comparison: {path}: {e}")
+from first_law_check import load  # noqa: E402
 
 
 def grid_name(g):
@@ -73,7 +64,7 @@ def main():
     p.add_argument("--target", default="0.75", help="M0/(M0)_max of the sequences, as the tables print it")
     p.add_argument("--grid", help="one grid's values (as n128_dx0.03) instead of the error model's Q_e")
     a = p.parse_args()
-    co, irr = load(a.corotating), load(a.irrotational)
+    co, irr = load(a.corotating, "flow_comparison"), load(a.irrotational, "flow_comparison")
     if [grid_name(g) for g in co["grids"]] != [grid_name(g) for g in irr["grids"]]:
         sys.exit("flow_comparison: the two sequences are not on the same grids")
     m0 = float(a.target) * co["m0_max"]
