@@ -200,6 +200,13 @@ double Irrotational::prepare(Grid& grid, const FlowConstants& c) {
     throw core::RunFailure(fmt::format("flow_irrotational: the velocity potential's solve did not converge ({} unknowns, "
                                        "{} iterations, relative residual {:.3e} against {:.1e})",
                                        last_.unknowns, last_.iterations, last_.residual, settings_.tolerance));
+  // Under-relaxed: the potential drives the star's momentum, the momentum the shift, and the shift
+  // the potential's source B = beta + Omegahat xi, in which it cancels about half of the rotation
+  // at the star, a loop with a gain near -1 that one V-cycle per outer step damps only just.
+  if (settings_.relaxation < 1) {
+    for (std::size_t p = 0; p < lv.size; ++p) psi[p] = before[p] + settings_.relaxation * (psi[p] - before[p]);
+    grid.fill_ghosts(psi_, 0);
+  }
   double change = 0, size = 0;
   for (std::size_t p = 0; p < lv.size; ++p)
     if (level_set[p] > 0) {

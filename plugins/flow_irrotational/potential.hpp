@@ -59,6 +59,8 @@ struct PotentialSettings {
   /// its neighbours in the system: what fixes the vertices whose faces all have a = 0, and makes
   /// the solution a continuous function of the level set as faces open and close.
   double coupling = 1e-7;
+  /// Fraction of each outer step's change of Psitilde taken (1: the whole solve).
+  double relaxation = 1.0;
 };
 
 /// Solves for Psitilde on the finest level of `grid` (the field `psi`), physical vertices from the
