@@ -235,7 +235,8 @@ void Irrotational::set_constants(Grid& grid, const FlowConstants& c) {
   const Level& lv = grid.finest();
   if (psi_xi_.size() != lv.size || c.omega_hat == psi_omega_) return;
   double* psi = grid.data(psi_, 0, 0);
-  const double change = c.omega_hat - psi_omega_;
+  // An under-relaxed solve took that fraction of its Omegahat-dependence too.
+  const double change = settings_.relaxation * (c.omega_hat - psi_omega_);
   for (std::size_t p = 0; p < lv.size; ++p) psi[p] += change * psi_xi_[p];
   grid.fill_ghosts(psi_, 0);
   psi_omega_ = c.omega_hat;

@@ -5,6 +5,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "star_runs.hpp"
 
@@ -41,11 +43,13 @@ TEST_CASE("plugins.flow_irrotational.close_binary_converges", "[plugins][flow_ir
 
 TEST_CASE("plugins.flow_irrotational.relaxation_keeps_the_fixed_point", "[plugins][flow_irrotational][binary]") {
   // Under-relaxing the potential damps the potential-shift loop (the shift cancels about half of
-  // Omegahat xi at the star); it must leave the solution where it was. Measured on the quick start at
-  // n = 64: 31 outer steps whole, 24 at 0.7; Omegahat equal to 3e-7, sigma to 2e-8.
+  // Omegahat xi at the star); it must leave the solution where it was, up to the surface vertices
+  // held once the star settles, which depend on the path. Measured on the quick start at n = 64: 31
+  // outer steps with the whole solve taken, 25 at 0.5; Omegahat 0.14112952 and 0.14113540 (4e-5
+  // apart, against the 2 % by which it moves from n = 32 to 64), sigma 8e-7 apart.
   const std::vector<std::string> grid{"grid.n=64", "grid.dx=0.06"};
   std::vector<std::string> relaxed = grid;
-  relaxed.push_back("flow_irrotational.relaxation=0.7");
+  relaxed.push_back("flow_irrotational.relaxation=0.5");
   const ParfileRun whole = run_parfile("quickstart_irrotational.yaml", grid);
   const ParfileRun damped = run_parfile("quickstart_irrotational.yaml", relaxed);
   INFO(whole.output << damped.output);
@@ -54,6 +58,23 @@ TEST_CASE("plugins.flow_irrotational.relaxation_keeps_the_fixed_point", "[plugin
   CHECK(damped.scalar("outer_iterations") < whole.scalar("outer_iterations"));
   for (const char* key : {"omega_hat", "sigma", "bernoulli_constant", "rest_mass"}) {
     INFO(key);
-    CHECK(damped.scalar(key) == Approx(whole.scalar(key)).epsilon(1e-5));
+    CHECK(damped.scalar(key) == Approx(whole.scalar(key)).epsilon(2e-4));  // 1 % of the truncation error
   }
+}
+
+TEST_CASE("plugins.flow_irrotational.sly_binary_converges_without_spin", "[plugins][flow_irrotational][binary]") {
+  // The SLy binary (parfiles/binary_sly_irrotational.yaml at n = 64, relaxation 0.5): with the whole
+  // potential solve taken each step it fails in its second step (the first potential, solved before
+  // the shift felt any momentum, makes the next shift overshoot). Measured: 50 outer steps; star_spin 1.5e-4 against
+  // the corotating star's 0.30; Omega = Omegahat/sigma 0.010109 against 0.010079.
+  const std::vector<std::string> grid{"grid.n=64", "grid.dx=0.06"};
+  const ParfileRun irr = run_parfile("binary_sly_irrotational.yaml", grid);
+  const ParfileRun co = run_parfile("binary_sly.yaml", grid);
+  INFO(irr.output);
+  REQUIRE(irr.status == "converged");
+  REQUIRE(co.status == "converged");
+  CHECK(irr.scalar("outer_iterations") < 80);
+  INFO("star_spin " << irr.scalar("star_spin") << " against " << co.scalar("star_spin"));
+  CHECK(std::fabs(irr.scalar("star_spin")) < 0.01 * co.scalar("star_spin"));
+  CHECK(irr.scalar("omega_hat") / irr.scalar("sigma") > co.scalar("omega_hat") / co.scalar("sigma"));
 }
