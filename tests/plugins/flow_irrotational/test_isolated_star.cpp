@@ -1,4 +1,4 @@
-// An isolated irrotational star is the static TOV star (physics-notes-irrotational §5 (i), (i')):
+// An isolated irrotational star is the static TOV star:
 // with the frame at rest the potential's source vanishes and Psitilde is 0 to the last bit, so the
 // run is the corotating static star's; with the frame rotating (star.test_omega_hat) the discrete
 // potential cancels the rotation up to the discretisation, which falls at second order, while a

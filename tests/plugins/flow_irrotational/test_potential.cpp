@@ -1,7 +1,7 @@
 // The velocity potential's cut-cell discretisation (potential.hpp) against exact solutions: the face
 // average of rho0 against its closed form, and the compressible Riemann-S ellipsoid, whose
 // irrotational flow psi = Omega q x y, q = (A^2 - B^2)/(A^2 + B^2), solves
-// div[rho (grad psi - Omega xi)] = 0 for any stratification rho(s^2) (physics-notes-irrotational §2.6).
+// div[rho (grad psi - Omega xi)] = 0 for any stratification rho(s^2) (docs/irrotational.md).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -43,7 +43,7 @@ class Crust final : public Eos {
 
 /// The closed form of the face average of max(0, c + g1 eta + g2 zeta)/2 over the unit-area face
 /// scaled to side dx: [R(c+w1+w2) - R(c+w1-w2) - R(c-w1+w2) + R(c-w1-w2)] / (24 w1 w2), R(u) =
-/// max(u, 0)^3, w_i = |g_i| dx/2 (physics-notes-irrotational §2.7), halved for rho0 = s/2.
+/// max(u, 0)^3, w_i = |g_i| dx/2 (the plugin README's tests), halved for rho0 = s/2.
 double closed_form(double c, double g1, double g2, double dx) {
   const double w1 = std::fabs(g1) * dx / 2, w2 = std::fabs(g2) * dx / 2;
   auto r = [](double u) { return u > 0 ? u * u * u : 0.0; };
