@@ -71,8 +71,10 @@ PotentialSolve solve_potential(Grid& grid, int psi, double* psi_xi, const Eos& e
                                const PotentialSettings& settings);
 
 /// Face average of rho0(1 + max(s, 0)) over a square face of side dx on which s is linear: s_f at
-/// its centre, slopes g1, g2 along its two axes. Exact (0 or the midpoint rule) where the face lies
-/// wholly outside or inside; a midpoint rule on samples x samples sub-squares where the surface cuts it.
+/// its centre, slopes g1, g2 along its two axes. 0 where the face lies wholly outside; a midpoint rule
+/// on samples x samples sub-squares where the surface cuts it; the midpoint rule where its lowest
+/// corner lies deeper than the face's range of s; a linear blend of the two between (continuous in
+/// s_f, g1, g2 for any EOS).
 double face_average_rho0(const Eos& eos, double s_f, double g1, double g2, double dx, int samples);
 
 }  // namespace bhnsid::flow_irrotational
