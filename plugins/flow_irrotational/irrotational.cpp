@@ -9,6 +9,7 @@
 
 #include "bhnsid/core/errors.hpp"
 #include "bhnsid/interfaces/spacetime.hpp"
+#include "corotating_start.hpp"
 
 namespace bhnsid::flow_irrotational {
 
@@ -101,10 +102,11 @@ LevelFields level_fields(Grid& grid, int psi, int level) {
   return f;
 }
 
-/// B = beta + Omegahat xi at stored point (i, j) of a level.
-std::array<double, 3> frame_shift(const Level& lv, const LevelFields& f, double omega_hat, std::ptrdiff_t p, int i, int j) {
+/// B = s beta + Omegahat xi at stored point (i, j) of a level (s = shift_scale, 1 but in the reset).
+std::array<double, 3> frame_shift(const Level& lv, const LevelFields& f, double omega_hat, std::ptrdiff_t p, int i, int j,
+                                  double shift_scale = 1.0) {
   std::array<double, 3> b{-omega_hat * lv.y(j), omega_hat * lv.x(i), 0.0};
-  for (int a = 0; a < 3; ++a) b[static_cast<std::size_t>(a)] += f.beta[a] ? f.beta[a][p] : 0.0;
+  for (int a = 0; a < 3; ++a) b[static_cast<std::size_t>(a)] += f.beta[a] ? shift_scale * f.beta[a][p] : 0.0;
   return b;
 }
 
@@ -127,7 +129,23 @@ const Lapse& Irrotational::lapse() const {
   return *lapse_;
 }
 
+bool Irrotational::corotating(Grid& grid) const {
+  if (!decided_) {
+    decided_ = true;
+    const Level& lv = grid.finest();
+    const double* psi = grid.data(psi_, 0, 0);
+    corotating_ = corotating_start_ > 0 && std::all_of(psi, psi + lv.size, [](double v) { return v == 0.0; });
+  }
+  return corotating_;
+}
+
 double Irrotational::prepare(Grid& grid, const FlowConstants& c) {
+  ++prepared_;
+  if (corotating(grid) && prepared_ <= corotating_start_) return 1.0;  // not settled: no potential yet
+  // The first solve after a corotating start replaces a flow that carried the whole velocity: taken
+  // in part, it would halve the star's momentum at one stroke.
+  relaxation_ = corotating_ ? 1.0 : settings_.relaxation;
+  corotating_ = false;
   const Level& lv = grid.finest();
   const Fields f = finest_fields(grid, lapse());
   const double* rho0 = grid.data(grid.field_id(fields::rho0), 0, 0);
@@ -203,8 +221,8 @@ double Irrotational::prepare(Grid& grid, const FlowConstants& c) {
   // Under-relaxed: the potential drives the star's momentum, the momentum the shift, and the shift
   // the potential's source B = beta + Omegahat xi, in which it cancels about half of the rotation
   // at the star, a loop with a gain near -1 that one V-cycle per outer step damps only just.
-  if (settings_.relaxation < 1) {
-    for (std::size_t p = 0; p < lv.size; ++p) psi[p] = before[p] + settings_.relaxation * (psi[p] - before[p]);
+  if (relaxation_ < 1) {
+    for (std::size_t p = 0; p < lv.size; ++p) psi[p] = before[p] + relaxation_ * (psi[p] - before[p]);
     grid.fill_ghosts(psi_, 0);
   }
   double change = 0, size = 0;
@@ -236,7 +254,7 @@ void Irrotational::set_constants(Grid& grid, const FlowConstants& c) {
   if (psi_xi_.size() != lv.size || c.omega_hat == psi_omega_) return;
   double* psi = grid.data(psi_, 0, 0);
   // An under-relaxed solve took that fraction of its Omegahat-dependence too.
-  const double change = settings_.relaxation * (c.omega_hat - psi_omega_);
+  const double change = relaxation_ * (c.omega_hat - psi_omega_);
   for (std::size_t p = 0; p < lv.size; ++p) psi[p] += change * psi_xi_[p];
   grid.fill_ghosts(psi_, 0);
   psi_omega_ = c.omega_hat;
@@ -249,6 +267,23 @@ void Irrotational::update_sources(Grid& grid, int level, const FlowConstants& c)
   double* trace = grid.data(grid.field_id(fields::matter_trace), 0, level);
   const int mom = grid.field_id(fields::matter_momentum);
   double* j_up[3] = {grid.data(mom, 0, level), grid.data(mom, 1, level), grid.data(mom, 2, level)};
+  if (corotating(grid)) {
+    // rho_E = rho0 h W^2 - P, S = rho0 h (W^2 - 1) + 3 P, j^i = rho0 h W^2 U^i / alpha.
+    const double* alpha = lapse_on(grid, lapse(), level);
+    for_each_point(lv, [&](int i, int j, int, std::ptrdiff_t p) {
+      const std::array<double, 3> u = frame_shift(lv, f, c.omega_hat, p, i, j);
+      const double d = corotating_start::frame_norm(alpha[p], f.phi(p), u.data());
+      if (!(f.rho0[p] > 0) || !std::isfinite(d)) {
+        energy[p] = trace[p] = j_up[0][p] = j_up[1][p] = j_up[2][p] = 0.0;
+        return;
+      }
+      const double w2 = alpha[p] * alpha[p] / d, rho_h = f.rho0[p] * f.enthalpy[p];
+      energy[p] = rho_h * w2 - f.press[p];
+      trace[p] = rho_h * (w2 - 1.0) + 3.0 * f.press[p];
+      for (int a = 0; a < 3; ++a) j_up[a][p] = rho_h * w2 * u[static_cast<std::size_t>(a)] / alpha[p];
+    });
+    return;
+  }
   for_each_point(lv, [&](int i, int j, int k, std::ptrdiff_t p) {
     if (!(f.rho0[p] > 0)) {
       energy[p] = trace[p] = j_up[0][p] = j_up[1][p] = j_up[2][p] = 0.0;
@@ -266,6 +301,19 @@ void Irrotational::update_sources(Grid& grid, int level, const FlowConstants& c)
 void Irrotational::velocity(Grid& grid, const FlowConstants& c, double* lorentz_out, double* const* v) const {
   const Level& lv = grid.finest();
   const LevelFields f = level_fields(grid, psi_, 0);
+  if (corotating(grid)) {
+    // W = alpha/sqrt(D), v^i = U^i/alpha; W NaN where matter cannot corotate.
+    const double* alpha = lapse_on(grid, lapse(), 0);
+    for_each_point(lv, [&](int i, int j, int, std::ptrdiff_t p) {
+      const bool matter = f.rho0[p] > 0;
+      const std::array<double, 3> u = frame_shift(lv, f, c.omega_hat, p, i, j);
+      const double d = corotating_start::frame_norm(alpha[p], f.phi(p), u.data());
+      lorentz_out[p] = matter ? alpha[p] / std::sqrt(d) : 1.0;
+      if (v)
+        for (int a = 0; a < 3; ++a) v[a][p] = matter ? u[static_cast<std::size_t>(a)] / alpha[p] : 0.0;
+    });
+    return;
+  }
   for_each_point(lv, [&](int i, int j, int k, std::ptrdiff_t p) {
     if (!(f.rho0[p] > 0)) {
       lorentz_out[p] = 1.0;
@@ -287,8 +335,19 @@ void Irrotational::velocity(Grid& grid, const FlowConstants& c, double* lorentz_
 void Irrotational::enthalpy(Grid& grid, const FlowConstants& c, const double* alpha, const double* phi, double* h) const {
   const Level& lv = grid.finest();
   const LevelFields f = level_fields(grid, psi_, 0);
+  const bool corotation = corotating(grid);
+  // The reset places the matter by the Newton step's model of the flow: the shift scaled with
+  // Omegahat as axis_residual scales it (the potential follows in set_constants). With the shift as
+  // the last field solve left it, the reset's star and the Newton step's disagree by the shift's
+  // change, and where the star's own momentum drags the frame (beta^y about -0.55 Omegahat xhat at
+  // the centre of a mu_bn = 10 star) the outer iteration swung with period 2 (Omegahat 0.26 <-> 0.33).
+  const double shift_scale = corotation || !(axis_omega_ > 0) ? 1.0 : c.omega_hat / axis_omega_;
   for_each_point(lv, [&](int i, int j, int k, std::ptrdiff_t p) {
-    const std::array<double, 3> b = frame_shift(lv, f, c.omega_hat, p, i, j);
+    const std::array<double, 3> b = frame_shift(lv, f, c.omega_hat, p, i, j, shift_scale);
+    if (corotation) {
+      h[p] = corotating_start::enthalpy(alpha[p], phi[p], b.data(), c.bernoulli);
+      return;
+    }
     const double g = first_integral_g(alpha[p], phi[p], b.data(), gradient(lv, f.psi, nullptr, i, j, k));
     h[p] = std::isfinite(g) ? c.bernoulli * g : -1.0;
   });
@@ -299,9 +358,15 @@ void Irrotational::first_integral(Grid& grid, const FlowConstants& c, double* ou
   const Level& lv = grid.finest();
   const LevelFields f = level_fields(grid, psi_, 0);
   const double* alpha = lapse_on(grid, lapse(), 0);
+  const bool corotation = corotating(grid);
   for_each_point(lv, [&](int i, int j, int k, std::ptrdiff_t p) {
     if (!(f.rho0[p] > 0)) {
       out[p] = nan;
+      return;
+    }
+    if (corotation) {  // h/u^t = h sqrt(D)
+      const std::array<double, 3> u = frame_shift(lv, f, c.omega_hat, p, i, j);
+      out[p] = f.enthalpy[p] * std::sqrt(corotating_start::frame_norm(alpha[p], f.phi(p), u.data()));
       return;
     }
     const std::array<double, 3> g = gradient(lv, f.psi, solved_mask(lv), i, j, k);
@@ -316,21 +381,26 @@ const std::uint8_t* Irrotational::solved_mask(const Level& lv) const {
   return source_.size() == lv.size ? source_.data() : nullptr;
 }
 
-std::array<double, 2> Irrotational::potential_size(Grid& grid) const {
+std::array<double, 3> Irrotational::potential_size(Grid& grid) const {
   const Level& lv = grid.finest();
   const double* rho0 = grid.data(grid.field_id(fields::rho0), 0, 0);
   const double* psi = grid.data(psi_, 0, 0);
-  double psi_max = 0, grad_max = 0;
+  double psi_max = 0, grad_max = 0, weighted = 0, mass = 0;
   for (int k = 0; k < lv.nz; ++k)
     for (int j = 0; j < lv.ny; ++j)
       for (int i = 0; i < lv.nx; ++i) {
         const std::ptrdiff_t p = lv.at(i, j, k);
         if (!(rho0[p] > 0)) continue;
         psi_max = std::max(psi_max, std::fabs(psi[p]));
+        // The plane z = 0 stands for half a layer of the mirrored grid.
+        const double weight = rho0[p] * (lv.z_symmetry && k == 0 ? 0.5 : 1.0);
+        weighted += weight * psi[p] * psi[p];
+        mass += weight;
         const std::array<double, 3> g = gradient(lv, psi, solved_mask(lv), i, j, k);
         grad_max = std::max(grad_max, std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]));
       }
-  return {grid.global_max(psi_max), grid.global_max(grad_max)};
+  mass = grid.global_sum(mass);
+  return {grid.global_max(psi_max), grid.global_max(grad_max), mass > 0 ? std::sqrt(grid.global_sum(weighted) / mass) : 0.0};
 }
 
 namespace {
@@ -403,6 +473,7 @@ void Irrotational::freeze_axis(Grid& grid, const std::vector<double>& xs, const 
     if (beta_y) axis_beta_y_[p] = grid.interpolate(beta_y, Parity{}, 0, {xs[p], 0, 0});
   }
   axis_omega_ = c.omega_hat;
+  corotating(grid);
 }
 
 AxisResidual Irrotational::axis_residual(std::size_t p, double alpha, double phi, double omega_hat, double bernoulli,
@@ -414,6 +485,11 @@ AxisResidual Irrotational::axis_residual(std::size_t p, double alpha, double phi
   // frozen overshoots by two and the outer iteration oscillates). With q frozen, the Newton step
   // maps Omega to Omega*^2/Omega and never converges.
   const double x = axis_x_.at(p), w0 = axis_omega_;
+  if (corotating_) {
+    double r[3];
+    corotating_start::axis_residual(x, axis_beta_y_.at(p), alpha, phi, omega_hat, bernoulli, enthalpy, r);
+    return {r[0], r[1], r[2]};
+  }
   const double ratio = w0 > 0 ? omega_hat / w0 : 1.0, dratio = w0 > 0 ? 1.0 / w0 : 0.0;
   const double q = axis_p_.at(p) * ratio, dq = axis_p_.at(p) * dratio;
   const double u = axis_beta_y_.at(p) * ratio + x * omega_hat, du = axis_beta_y_.at(p) * dratio + x;

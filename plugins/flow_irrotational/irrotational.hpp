@@ -22,7 +22,10 @@ inline constexpr const char* potential_field = "psi_tilde";
 
 class Irrotational final : public Flow {
  public:
-  explicit Irrotational(PotentialSettings settings) : settings_(settings) {}
+  /// `corotating_start`: outer steps of a cold start (Psitilde 0 everywhere) taken with the
+  /// corotating flow before the potential is first solved (corotating_start.hpp).
+  Irrotational(PotentialSettings settings, int corotating_start)
+      : settings_(settings), corotating_start_(corotating_start) {}
   /// The lapse and the EOS the flow reads, and the field Psitilde registered on `grid`.
   void attach(Grid& grid, const Lapse& lapse, const Eos& eos);
 
@@ -37,16 +40,23 @@ class Irrotational final : public Flow {
   void first_integral(Grid& grid, const FlowConstants& c, double* out) const override;
   bool solves_continuity() const override { return true; }
   /// The potential's scaling model (q, beta ∝ Omegahat) holds near the Omegahat it was solved at.
-  double omega_step_limit() const override { return 0.2; }
+  double omega_step_limit() const override { return corotating_ ? 0.0 : 0.2; }
   void freeze_axis(Grid& grid, const std::vector<double>& xs, const FlowConstants& c) override;
   AxisResidual axis_residual(std::size_t p, double alpha, double phi, double omega_hat, double bernoulli,
                              double enthalpy) const override;
 
+  /// True while a cold start's first outer steps take the corotating flow (decided at the first
+  /// call: Psitilde 0 everywhere and `corotating_start` > 0).
+  bool corotating(Grid& grid) const;
+  /// Outer steps begun (prepare calls).
+  int outer_steps() const { return prepared_; }
+
   /// The last potential solve, for the log and the summary.
   const PotentialSolve& last_solve() const { return last_; }
   /// max |Psitilde - Psitilde(centre)| over the star's matter points (0 for a star at rest in a
-  /// rotating frame, up to the discretisation), and max |dhat Psitilde| there.
-  std::array<double, 2> potential_size(Grid& grid) const;
+  /// rotating frame, up to the discretisation), max |dhat Psitilde| there, and the rms of Psitilde
+  /// weighted by rho0 (the norm in which the surface's low-order error counts by its mass).
+  std::array<double, 3> potential_size(Grid& grid) const;
 
  private:
   const Lapse& lapse() const;
@@ -55,6 +65,10 @@ class Irrotational final : public Flow {
   /// The relative change of Psitilde in the star below which the star counts as settled.
   static constexpr double settle_change = 1e-2;
   PotentialSettings settings_;
+  int corotating_start_ = 0;
+  int prepared_ = 0;
+  double relaxation_ = 1.0;  ///< the fraction the last solve took (settings_.relaxation but after a corotating start)
+  mutable bool decided_ = false, corotating_ = false;
   const Lapse* lapse_ = nullptr;
   const Eos* eos_ = nullptr;
   int psi_ = -1;

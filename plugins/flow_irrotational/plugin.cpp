@@ -59,12 +59,19 @@ void declare(core::PluginBuilder& b) {
       .default_value(1.0)
       .greater_than(0)
       .at_most(1.0);
+  b.integer("corotating_start")
+      .doc("outer steps of a cold start (the potential 0 everywhere) taken with the corotating flow before the "
+           "potential is first solved, so that the shift carries the orbit's momentum when it is (0: none; the "
+           "mu_bn = 10 binary needs 1 or more; a warm start or a resumed run with a potential takes none)")
+      .default_value(std::int64_t{0})
+      .at_least(0)
+      .at_most(1000);
   b.schedule(Bin::startup, "publish", [state](Context& ctx) {
      PotentialSettings s;
      s.tolerance = ctx.params().real("tolerance");
      s.face_samples = static_cast<int>(ctx.params().integer("face_samples"));
      s.relaxation = ctx.params().real("relaxation");
-     state->flow = std::make_shared<Irrotational>(s);
+     state->flow = std::make_shared<Irrotational>(s, static_cast<int>(ctx.params().integer("corotating_start")));
      ctx.publish<Flow>("flow", state->flow);
    }).doc("publish the irrotational flow for the star");
   b.schedule(Bin::setup, "setup", [state](Context& ctx) {
@@ -88,8 +95,10 @@ void declare(core::PluginBuilder& b) {
      const auto size = state->flow->potential_size(ctx.services().get<Grid>("grid"));
      ctx.set_scalar("potential_max", size[0]);
      ctx.set_scalar("potential_gradient_max", size[1]);
+     ctx.set_scalar("potential_rms", size[2]);
    }).doc("potential_unknowns, potential_iterations, potential_residual of the last solve; potential_max (max "
-          "|Psitilde| in the star, gauge 0 at its centre) and potential_gradient_max (max |dhat Psitilde|)");
+          "|Psitilde| in the star, gauge 0 at its centre), potential_gradient_max (max |dhat Psitilde|) and "
+          "potential_rms (the rms of Psitilde weighted by rho0)");
 }
 
 }  // namespace
