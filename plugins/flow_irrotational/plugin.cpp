@@ -54,8 +54,8 @@ void declare(core::PluginBuilder& b) {
 
   b.real("relaxation")
       .doc("fraction of each outer step's change of the velocity potential taken (1: the whole solve); 0.5 makes the "
-           "SLy binary converge (it fails in its second step with 1) and takes the mu_bn = 3 lapse_komar binary at "
-           "n = 64 from 125 outer steps to 53, but slows or stalls others (docs/irrotational.md)")
+           "SLy binary converge (it fails in its third step with 1) and takes the quick start at n = 64 from 30 outer "
+           "steps to 25, but slows others (docs/irrotational.md)")
       .default_value(1.0)
       .greater_than(0)
       .at_most(1.0);
