@@ -49,6 +49,7 @@ void UniformGrid::save(core::CheckpointWriter& out) const {
       out.put_bytes(fmt::format("mask/{}/{}", m.name, l), m.levels[l].get(), levels_[l].size);
   }
   out.put("lattice", std::vector<double>{static_cast<double>(levels_[0].n), levels_[0].dx});
+  out.put("boxes", std::vector<double>{static_cast<double>(num_boxes())});
 }
 
 void UniformGrid::restore(const core::CheckpointReader& in) {
@@ -70,7 +71,16 @@ void UniformGrid::warm_start(const core::CheckpointReader& in) {
   const std::vector<double> lattice = in.reals("lattice");
   if (lattice.size() != 2) throw core::InputError("grid: the checkpoint's lattice entry is malformed");
   const Level& fine = levels_[0];
+  // Checkpoints written before nested boxes existed hold a single cube.
+  const int their_boxes = in.has("boxes") ? static_cast<int>(in.reals("boxes").at(0)) : 1;
+  if (their_boxes != num_boxes())
+    throw core::InputError(fmt::format("grid: the checkpoint has grid.boxes = {}, this run {}", their_boxes, num_boxes()));
   if (static_cast<int>(lattice[0]) == fine.n && lattice[1] == fine.dx) return restore(in);
+  if (num_boxes() > 1)
+    throw core::InputError(fmt::format(
+        "grid: a warm start from the next coarser lattice (n = {}, dx = {}) is not available with grid.boxes = {} yet; "
+        "start from the same lattice or from a cold start",
+        lattice[0], lattice[1], num_boxes()));
   // The next coarser run of the same cube (the core let only that through): its finest level is
   // our level 1, its level l our level l + 1.
   if (static_cast<int>(lattice[0]) * 2 != fine.n || std::fabs(lattice[1] - 2 * fine.dx) > 1e-12 * fine.dx ||

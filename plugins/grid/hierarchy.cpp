@@ -28,7 +28,19 @@ std::vector<Level> build_hierarchy(const HierarchySpec& spec) {
     throw core::InputError(fmt::format(
         "grid.n = {}: expected an even number of intervals >= 2, so that the origin and the axes are grid points",
         spec.n));
+  if (spec.boxes > 1 && spec.n % 4 != 0)
+    throw core::InputError(fmt::format(
+        "grid.n = {} with grid.boxes = {}: expected n divisible by 4, so that each box's faces (and, with "
+        "equatorial symmetry, its top) lie on points of the box about it",
+        spec.n, spec.boxes));
+  if (spec.max_levels > 0 && spec.max_levels < spec.boxes)
+    throw core::InputError(fmt::format("grid.max_levels = {} is below grid.boxes = {}: every box is a level",
+                                       spec.max_levels, spec.boxes));
   std::vector<Level> levels{make_level(0, spec.n, spec.dx, spec.symmetry)};
+  for (int box = 1; box < spec.boxes; ++box) {
+    levels.back().inner = true;
+    levels.push_back(make_level(box, spec.n, 2 * levels.back().dx, spec.symmetry));
+  }
   for (;;) {
     const Level& fine = levels.back();
     if (spec.max_levels > 0 && static_cast<int>(levels.size()) >= spec.max_levels) break;

@@ -25,7 +25,8 @@ class Layout : public GridLayout {
   Layout(std::vector<Level> levels, const HierarchySpec& spec) : levels_(std::move(levels)), spec_(spec) {}
   const std::vector<Level>& levels() const override { return levels_; }
   std::string describe() const override {
-    return fmt::format("grid.n = {} ({} levels{})", spec_.n, levels_.size(),
+    return fmt::format("grid.n = {} ({}{} levels{})", spec_.n,
+                       spec_.boxes > 1 ? fmt::format("{} boxes, ", spec_.boxes) : std::string(), levels_.size(),
                        spec_.symmetry == Symmetry::equatorial ? ", equatorial" : "");
   }
 
@@ -41,6 +42,7 @@ HierarchySpec spec_from(const core::ParamSection& p) {
   s.symmetry = p.string("symmetry") == "equatorial" ? Symmetry::equatorial : Symmetry::none;
   s.max_levels = static_cast<int>(p.integer("max_levels"));
   s.min_coarse_intervals = static_cast<int>(p.integer("min_coarse_intervals"));
+  s.boxes = static_cast<int>(p.integer("boxes"));
   return s;
 }
 
@@ -74,6 +76,13 @@ void declare(core::PluginBuilder& b) {
       .at_least(2)
       .at_most(4096);
 
+  b.integer("boxes")
+      .doc("nested boxes about the origin, finest included: box b has n intervals of spacing 2^b dx, so the "
+           "domain's faces lie at 2^(boxes-1) n dx/2; 1: a single cube")
+      .default_value(std::int64_t{1})
+      .at_least(1)
+      .at_most(16);
+
   b.schedule(Bin::paramcheck, "check_hierarchy", [](Context& ctx) {
      const HierarchySpec spec = spec_from(ctx.params());
      ctx.publish<GridLayout>(grid_layout_capability, std::make_shared<Layout>(build_hierarchy(spec), spec));
@@ -89,8 +98,9 @@ void declare(core::PluginBuilder& b) {
      const HierarchySpec spec = spec_from(ctx.params());
      auto levels = build_hierarchy(spec);
      for (const Level& lv : levels)
-       ctx.log().info("level {}: n = {:4d}, dx = {:.6g}, {} x {} x {} points{}", lv.index, lv.n, lv.dx, lv.nx, lv.ny,
-                      lv.nz, lv.z_symmetry ? " (z >= 0)" : "");
+       ctx.log().info("level {}: n = {:4d}, dx = {:.6g}, {} x {} x {} points{}, half width {:.6g}{}", lv.index, lv.n,
+                      lv.dx, lv.nx, lv.ny, lv.nz, lv.z_symmetry ? " (z >= 0)" : "", lv.half_width(),
+                      lv.inner ? " (inner box)" : "");
      state->grid = std::make_shared<UniformGrid>(std::move(levels), spec.symmetry);
      ctx.publish<Grid>("grid", state->grid);
    }).doc("build the level hierarchy and publish the grid service");

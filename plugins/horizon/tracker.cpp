@@ -11,6 +11,7 @@ namespace bhnsid::horizon {
 
 Horizon locate(core::Context& ctx, State& state) {
   const auto& grid = ctx.services().get<Grid>("grid");
+  require_single_box(grid, ctx.plugin());
   const auto& puncture = ctx.services().get<Puncture>("puncture");
   const auto* fluid = ctx.services().find<Fluid>("star");
   Hole hole{puncture.bare_mass(), puncture.position(), puncture.momentum()};

@@ -62,6 +62,7 @@ void declare(core::PluginBuilder& b) {
   b.schedule(Bin::output, "write", [](Context& ctx) {
      if (!ctx.run_record().initial_data) return;  // a signal before the initial data: no state
      const auto& grid = ctx.services().get<Grid>("grid");
+     require_single_box(grid, ctx.plugin());
      const auto* fluid = ctx.services().find<Fluid>("star");
      ctx.write_output("axis_x.tsv", axis_table(grid, ctx.services().all<FieldExport>(), fluid ? fluid->sigma() : 1.0));
    }).doc("axis_x.tsv: every published field (ADMBase, HydroBase names) along the x axis, physical units; also after a "

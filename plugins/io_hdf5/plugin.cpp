@@ -27,6 +27,7 @@ constexpr const char* xdmf_name = "data.xdmf";
 
 void write(Context& ctx) {
   const auto& grid = ctx.services().get<Grid>("grid");
+  require_single_box(grid, ctx.plugin());
   Settings settings;
   settings.compression = static_cast<int>(ctx.params().integer("compression"));
   const std::string& which = ctx.params().string("variables");

@@ -88,6 +88,7 @@ void declare(core::PluginBuilder& b) {
 
   b.schedule(Bin::analysis, "residuals", [state](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");
+     require_single_box(grid, ctx.plugin());
      const auto* fluid = ctx.services().find<Fluid>("star");
      // The projections of the solution itself (the last sweep's may lag it by one sweep).
      if (fluid && grid.has_field(fields::matter_energy)) fluid->update_sources(grid, 0);

@@ -68,6 +68,7 @@ void declare(core::PluginBuilder& b) {
 
   b.schedule(Bin::setup, "setup", [state](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");
+     require_single_box(grid, ctx.plugin());
      const auto* fluid = ctx.services().find<Fluid>("star");
      const auto& puncture = ctx.services().get<Puncture>("puncture");
      ctx.publish<EllipticEquation>("equation.lapse", std::make_shared<KomarEquation>(grid, fluid, puncture, state->strength));

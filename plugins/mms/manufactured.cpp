@@ -17,7 +17,7 @@ using core::TensorKind;
 namespace {
 
 ProblemSpec on_grid(ProblemSpec spec, const Grid& grid) {
-  spec.half_width = grid.finest().half_width();
+  spec.half_width = grid.domain().half_width();
   return spec;
 }
 
@@ -85,6 +85,11 @@ class Sampler {
   static double at(const std::vector<double>& v, int i) { return v[static_cast<std::size_t>(i)]; }
   const ExactSolution& exact_;
   const Level& lv_;
+
+ public:
+  const Level& level() const { return lv_; }
+
+ private:
   std::vector<double> fx_, fy_, fz_, fx2_, fy2_, fz2_;
 };
 
@@ -106,12 +111,11 @@ Manufactured::Manufactured(Grid& grid, const Settings& settings)
     unknowns_.push_back("mms_w");
     sources.push_back("mms_source_w");
   }
-  const Sampler sample(exact_, grid.finest());
   for (std::size_t q = 0; q < unknowns_.size(); ++q) {
     grid.add_field(unknowns_[q], kinds);
     const int s = grid.add_field(sources[q], kinds);
     const int unknown = static_cast<int>(q);
-    fill_finest(s, [&](int c, int i, int j, int k) { return sample.source(unknown, c, i, j, k); });
+    fill_boxes(s, [&](const Sampler& sample, int c, int i, int j, int k) { return sample.source(unknown, c, i, j, k); });
   }
 
   std::string mask;
@@ -156,30 +160,35 @@ Manufactured::Manufactured(Grid& grid, const Settings& settings)
 }
 
 template <class Fn>
-void Manufactured::fill_finest(int field, Fn&& value_at) {
-  const Level& lv = grid_.finest();
+void Manufactured::fill_boxes(int field, Fn&& value_at) {
   const FieldInfo& info = grid_.field_info(field);
-  for (int c = 0; c < static_cast<int>(info.components.size()); ++c) {
-    double* data = grid_.data(field, c, 0);
+  for (int l = 0; l < grid_.num_boxes(); ++l) {
+    const Level& lv = grid_.level(l);
+    const Sampler sample(exact_, lv);
+    for (int c = 0; c < static_cast<int>(info.components.size()); ++c) {
+      double* data = grid_.data(field, c, l);
 #pragma omp parallel for schedule(static)
-    for (int k = 0; k < lv.nz; ++k)
-      for (int j = 0; j < lv.ny; ++j)
-        for (int i = 0; i < lv.nx; ++i) data[lv.at(i, j, k)] = value_at(c, i, j, k);
+      for (int k = 0; k < lv.nz; ++k)
+        for (int j = 0; j < lv.ny; ++j)
+          for (int i = 0; i < lv.nx; ++i) data[lv.at(i, j, k)] = value_at(sample, c, i, j, k);
+    }
+    grid_.fill_ghosts(field, l);
   }
-  grid_.fill_ghosts(field, 0);
 }
 
 void Manufactured::set_initial() {
-  const Level& lv = grid_.finest();
-  const Sampler sample(exact_, lv);
-  const std::uint8_t* excised = mask_ >= 0 ? grid_.mask(mask_, 0) : nullptr;
+  const Level& domain = grid_.domain();
   for (std::size_t q = 0; q < unknowns_.size(); ++q) {
     const int field = grid_.field_id(unknowns_[q]);
     const bool dirichlet = equations_[q]->boundary().kind == OuterBoundary::Kind::dirichlet;
     const FieldInfo& info = grid_.field_info(field);
     const int unknown = static_cast<int>(q);
-    fill_finest(field, [&](int c, int i, int j, int k) {
-      if ((dirichlet && lv.on_outer_face(i, j, k)) || (excised && excised[lv.at(i, j, k)]))
+    fill_boxes(field, [&](const Sampler& sample, int c, int i, int j, int k) {
+      const Level& lv = sample.level();
+      const std::uint8_t* excised = mask_ >= 0 ? grid_.mask(mask_, lv.index) : nullptr;
+      // The domain's faces are the outer boundary; an inner box's take the coarser box's values.
+      if ((dirichlet && lv.index == domain.index && lv.on_outer_face(i, j, k)) ||
+          (excised && excised[lv.at(i, j, k)]))
         return sample.value(unknown, c, i, j, k);
       // A component odd in z vanishes on the symmetry plane; start it there.
       if (lv.z_symmetry && k == 0 && info.parity[static_cast<std::size_t>(c)].z < 0) return 0.0;
@@ -189,36 +198,45 @@ void Manufactured::set_initial() {
 }
 
 void Manufactured::set_exact() {
-  const Sampler sample(exact_, grid_.finest());
   for (std::size_t q = 0; q < unknowns_.size(); ++q) {
     const int unknown = static_cast<int>(q);
-    fill_finest(grid_.field_id(unknowns_[q]),
-                [&](int c, int i, int j, int k) { return sample.value(unknown, c, i, j, k); });
+    fill_boxes(grid_.field_id(unknowns_[q]), [&](const Sampler& sample, int c, int i, int j, int k) {
+      return sample.value(unknown, c, i, j, k);
+    });
   }
 }
 
 Errors Manufactured::errors(int unknown) const {
-  const Level& lv = grid_.finest();
-  const Sampler sample(exact_, lv);
   const int field = grid_.field_id(unknowns_.at(static_cast<std::size_t>(unknown)));
   const int ncomp = static_cast<int>(grid_.field_info(field).components.size());
-  double max = 0, sum2 = 0;
-  for (int c = 0; c < ncomp; ++c) {
-    const double* u = grid_.data(field, c, 0);
-#pragma omp parallel for schedule(static) reduction(max : max) reduction(+ : sum2)
-    for (int k = 0; k < lv.nz; ++k)
-      for (int j = 0; j < lv.ny; ++j)
-        for (int i = 0; i < lv.nx; ++i) {
-          const double e = std::fabs(u[lv.at(i, j, k)] - sample.value(unknown, c, i, j, k));
-          // NaN must not hide behind max: it would compare false and leave max unchanged.
-          max = std::isnan(e) || e > max ? e : max;
-          sum2 += e * e;
-        }
+  double max = 0, sum2 = 0, volume = 0;
+  // The composite grid: each box's points outside the finer box, weighted by the volume a point
+  // stands for (dx^3), so that the rms is the L2 norm over the domain.
+  for (int l = 0; l < grid_.num_boxes(); ++l) {
+    const Level& lv = grid_.level(l);
+    const Sampler sample(exact_, lv);
+    const double h = l > 0 ? grid_.level(l - 1).half_width() : -1.0, dv = lv.dx * lv.dx * lv.dx;
+    auto owned = [&](int i, int j, int k) {
+      return l == 0 || std::fmax(std::fabs(lv.x(i)), std::fmax(std::fabs(lv.y(j)), std::fabs(lv.z(k)))) > h * (1 + 1e-12);
+    };
+    for (int c = 0; c < ncomp; ++c) {
+      const double* u = grid_.data(field, c, l);
+#pragma omp parallel for schedule(static) reduction(max : max) reduction(+ : sum2, volume)
+      for (int k = 0; k < lv.nz; ++k)
+        for (int j = 0; j < lv.ny; ++j)
+          for (int i = 0; i < lv.nx; ++i) {
+            if (!owned(i, j, k)) continue;
+            const double e = std::fabs(u[lv.at(i, j, k)] - sample.value(unknown, c, i, j, k));
+            // NaN must not hide behind max: it would compare false and leave max unchanged.
+            max = std::isnan(e) || e > max ? e : max;
+            sum2 += e * e * dv;
+            volume += dv;
+          }
+    }
   }
-  const double count = static_cast<double>(lv.nx) * lv.ny * lv.nz * ncomp;
   Errors out;
   out.max = grid_.global_max(max);
-  out.rms = std::sqrt(grid_.global_sum(sum2) / grid_.global_sum(count));
+  out.rms = std::sqrt(grid_.global_sum(sum2) / grid_.global_sum(volume));
   return out;
 }
 

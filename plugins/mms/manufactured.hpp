@@ -31,7 +31,7 @@ class Manufactured {
 
   /// Checks the problem against the grid (core::InputError naming the parameter), registers the
   /// unknown(s) and coefficient(s) on all levels and the excision mask, fills the coefficients on
-  /// the finest level and their ghosts, and builds the equation service(s).
+  /// every box (the solver restricts them below) and their ghosts, and builds the equation service(s).
   Manufactured(Grid& grid, const Settings& settings);
 
   const ExactSolution& exact() const { return exact_; }
@@ -42,21 +42,23 @@ class Manufactured {
   /// Grid field names of the unknowns, the partner's second.
   const std::vector<std::string>& unknowns() const { return unknowns_; }
 
-  /// Finest level: exact values on the faces (Dirichlet problems) and at excised points, the
-  /// initial guess elsewhere (0 on z = 0 for components odd in z); ghosts filled.
+  /// Every box (grid.boxes): exact values on the domain's faces (Dirichlet problems) and at
+  /// excised points, the initial guess elsewhere (0 on z = 0 for components odd in z); ghosts filled.
+  /// The coarser levels below the outermost box get theirs from the solver.
   void set_initial();
-  /// Every stored point of the finest level to the exact solution; ghosts filled.
+  /// Every stored point of every box to the exact solution; ghosts filled.
   void set_exact();
-  /// Errors of unknown 0 (the equation's) or 1 (the partner's) on the finest level.
+  /// Errors of unknown 0 (the equation's) or 1 (the partner's) on the composite grid: each box's
+  /// points outside the finer box; rms weighted by volume (the L2 norm over the domain).
   Errors errors(int unknown) const;
   /// The x axis of the finest level: "# x  u  exact", or for several columns "# x  v_x  exact_v_x ..."
   /// (one pair per component and unknown).
   std::string line_table() const;
 
  private:
-  /// Every stored point of the finest level to value_at(component, i, j, k); ghosts filled.
+  /// Every stored point of every box to value_at(sampler of the box, component, i, j, k); ghosts filled.
   template <class Fn>
-  void fill_finest(int field, Fn&& value_at);
+  void fill_boxes(int field, Fn&& value_at);
 
   Grid& grid_;
   Settings settings_;

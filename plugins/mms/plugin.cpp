@@ -144,7 +144,7 @@ void declare(core::PluginBuilder& b) {
        ctx.set_scalar("error_rms_partner", w.rms);
        ctx.log().info("partner: max |w - exact| = {:.6e}, rms {:.6e}", w.max, w.rms);
      }
-   }).doc("errors against the exact solution on the finest level");
+   }).doc("errors against the exact solution on the composite grid (every box outside the box inside it)");
 
   b.schedule(Bin::output, "write_line", [state](Context& ctx) {
      if (state->problem) ctx.write_output("mms_line.tsv", state->problem->line_table());

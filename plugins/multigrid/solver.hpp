@@ -3,6 +3,7 @@
 // cycles of red-black nonlinear Gauss-Seidel, full-weighting restriction of residuals and
 // coefficients, injection of the solution, trilinear prolongation of corrections, a direct Newton
 // solve on the coarsest level, and a monitor that stops at a fraction of the truncation error.
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -136,6 +137,14 @@ class FasSolver {
   /// The ghosts of every unknown on level l (equatorial symmetry).
   void fill_ghosts(int l);
   double rms_interior(const Slot& s, const std::vector<const double*>& field, int l) const;
+  /// The same over the interior points of `lv`, a part of level l (covered_part).
+  double rms_interior(const Slot& s, const std::vector<const double*>& field, const Level& lv, int l) const;
+  /// Over the points where level l solves its own equation: with nested boxes, its interior less
+  /// the part the finer box covers.
+  double rms_own(const Slot& s, const std::vector<const double*>& field, int l) const;
+  /// Sum of squares and count of points of rms_interior, on this process.
+  std::array<double, 2> squares_interior(const Slot& s, const std::vector<const double*>& field, const Level& lv,
+                                         int l) const;
   [[noreturn]] void fail_nonfinite(int cycle_number);
   RelaxArgs args(const Slot& s, int l) const;
 
@@ -143,6 +152,7 @@ class FasSolver {
   Settings settings_;
   core::Log log_;
   int levels_ = 0;
+  int boxes_ = 1;  ///< nested boxes: levels 0 .. boxes_ - 1 (Grid::num_boxes)
   std::vector<Slot> slots_;
   // Robin rows per distinct falloff centre, per level: equations about one centre share them, and
   // the smoother relaxes all their components in one pass over the rows.

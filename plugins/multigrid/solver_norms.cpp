@@ -2,6 +2,7 @@
 // of the first non-finite value (equation, component, point) when a solve blows up.
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 
 #include "bhnsid/core/errors.hpp"
@@ -12,7 +13,27 @@ namespace bhnsid::multigrid {
 
 
 double FasSolver::rms_interior(const Slot& s, const std::vector<const double*>& field, int l) const {
-  const Level& lv = grid_.level(l);
+  return rms_interior(s, field, grid_.level(l), l);
+}
+
+double FasSolver::rms_own(const Slot& s, const std::vector<const double*>& field, int l) const {
+  if (l == 0 || !grid_.level(l - 1).inner) return rms_interior(s, field, l);
+  // Nested boxes: level l's own points are its interior less the interior of the part the finer
+  // box covers (there level l solves the finer box's FAS equation, not its own).
+  const auto [sum, count] = squares_interior(s, field, grid_.level(l), l);
+  const auto [part_sum, part_count] = squares_interior(s, field, covered_part(grid_.level(l), grid_.level(l - 1)), l);
+  const double own = grid_.global_sum(sum - part_sum), points = grid_.global_sum(count - part_count);
+  return points > 0 ? std::sqrt(std::fmax(own, 0.0) / points) : 0.0;
+}
+
+double FasSolver::rms_interior(const Slot& s, const std::vector<const double*>& field, const Level& lv, int l) const {
+  const auto [sum, count] = squares_interior(s, field, lv, l);
+  const double total = grid_.global_sum(sum), points = grid_.global_sum(count);
+  return points > 0 ? std::sqrt(total / points) : 0.0;
+}
+
+std::array<double, 2> FasSolver::squares_interior(const Slot& s, const std::vector<const double*>& field,
+                                                  const Level& lv, int l) const {
   const std::uint8_t* fixed = s.mask >= 0 ? grid_.mask(s.mask, l) : nullptr;
   const int end = lv.nx - 1;
   double sum = 0, count = 0;
@@ -44,9 +65,7 @@ double FasSolver::rms_interior(const Slot& s, const std::vector<const double*>& 
         count += points;
       }
   }
-  sum = grid_.global_sum(sum);
-  count = grid_.global_sum(count);
-  return count > 0 ? std::sqrt(sum / count) : 0.0;
+  return {sum, count};
 }
 
 void FasSolver::fail_nonfinite(int cycle_number) {

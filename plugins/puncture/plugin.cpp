@@ -124,6 +124,7 @@ void declare(core::PluginBuilder& b) {
                                 "outer iteration: add the horizon plugin to plugins with horizon.every_iteration: true");
      }
      const auto& grid = ctx.services().get<Grid>("grid");
+     require_single_box(grid, ctx.plugin());
      const HoleValues h = scaled_hole(grid, *fluid, *family, mu, fluid->initial_rest_mass());
      hole->mass = h.mass;
      hole->x = h.position;

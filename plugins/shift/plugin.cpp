@@ -100,6 +100,7 @@ void declare(core::PluginBuilder& b) {
 
   b.schedule(Bin::setup, "setup", [state](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");
+     require_single_box(grid, ctx.plugin());
      const auto* fluid = ctx.services().find<Fluid>("star");
      const auto* puncture = ctx.services().find<Puncture>("puncture");
      Settings settings;

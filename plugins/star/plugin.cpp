@@ -105,6 +105,7 @@ void declare(core::PluginBuilder& b) {
 
   b.schedule(Bin::setup, "setup", [state](Context& ctx) {
      auto& grid = ctx.services().get<Grid>("grid");
+     require_single_box(grid, ctx.plugin());
      const auto& eos = ctx.services().get<Eos>("eos");
      const auto& family = ctx.services().get<TovFamily>("tov_family");
      auto& flow = ctx.services().get<Flow>("flow");

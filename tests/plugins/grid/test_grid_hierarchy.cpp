@@ -231,3 +231,48 @@ TEST_CASE("plugins.grid.level_indices_near_covers_an_interval", "[plugins][grid]
   const auto plain = full.indices_near_box({-0.3, 0.2, -1.1}, {0.4, 0.9, -0.6});
   CHECK(full.z(plain[2][1]) < 0.6);  // one index of slack above -0.6, far from the image
 }
+
+TEST_CASE("plugins.grid.nested_boxes_double_outward", "[plugins][grid]") {
+  // grid.boxes = 3: three boxes of n intervals about the origin at dx, 2 dx, 4 dx (half widths 0.8,
+  // 1.6, 3.2), the inner two marked inner, then the outermost box coarsened as a single cube is.
+  HierarchySpec spec;
+  spec.n = 16;
+  spec.dx = 0.1;
+  spec.symmetry = Symmetry::equatorial;
+  spec.boxes = 3;
+  const std::vector<Level> levels = build_hierarchy(spec);
+  REQUIRE(levels.size() == 5);
+  CHECK(intervals(levels) == std::vector<int>{16, 16, 16, 8, 4});
+  for (std::size_t l = 0; l < 3; ++l) {
+    CHECK(levels[l].half_width() == Approx(0.8 * std::pow(2.0, static_cast<double>(l))));
+    CHECK(levels[l].inner == (l < 2));
+  }
+  CHECK(levels[4].half_width() == Approx(3.2));
+  // The part of box 1 that box 0 covers: its point (I, J, K) is box 1's point at box 0's (2I, 2J,
+  // 2K), the same coordinates, at the array index of box 1's point (I + n/4, J + n/4, K).
+  const Level part = covered_part(levels[1], levels[0]);
+  CHECK(part.nx == 9);
+  CHECK(part.nz == 5);
+  for (int K = 0; K < part.nz; ++K)
+    for (int I = 0; I < part.nx; ++I) {
+      CHECK(part.at(I, I, K) == levels[1].at(I + 4, I + 4, K));
+      CHECK(part.x(I) == Approx(levels[0].x(2 * I)));
+      CHECK(levels[1].x(I + 4) == Approx(levels[0].x(2 * I)));
+      CHECK(part.z(K) == Approx(levels[0].z(2 * K)));
+    }
+  // A coarsening of one cube: the part is the coarse level itself.
+  const Level same = covered_part(levels[3], levels[2]);
+  CHECK(same.offset == levels[3].offset);
+  CHECK(same.nx == levels[3].nx);
+}
+
+TEST_CASE("plugins.grid.single_cube_plugins_refuse_nested_boxes", "[plugins][grid]") {
+  // Plugins that read the finest level as the whole domain refuse nested boxes with one input
+  // error naming grid.boxes, before the solve.
+  using namespace bhnsid::test;
+  TempDir dir;
+  const ProcessResult run = run_bhnsid({"run", (source_dir() / "parfiles" / "quickstart.yaml").string(), "--output",
+                                        (dir.path() / "qs").string(), "--set", "grid.boxes=2"});
+  CHECK(run.exit_code == 2);
+  CHECK_THAT(run.err + run.out, Contains("grid.boxes = 2: the plugin") && Contains("works on a single cube only"));
+}

@@ -14,6 +14,7 @@
 
 #include <fmt/format.h>
 
+#include "bhnsid/core/errors.hpp"
 #include "bhnsid/core/memory.hpp"
 #include "bhnsid/core/services.hpp"
 #include "bhnsid/core/variables.hpp"
@@ -42,6 +43,9 @@ struct Level {
   std::ptrdiff_t sy = 0, sz = 0;    ///< strides in y and z (x is contiguous)
   std::ptrdiff_t offset = 0;        ///< array index of stored point (0, 0, 0)
   std::size_t size = 0;             ///< doubles per array, ghosts included
+  /// A box inside the next coarser level (grid.boxes > 1), which covers twice its extent: its faces
+  /// are not the domain's boundary but take that level's values.
+  bool inner = false;
 
   std::ptrdiff_t at(int i, int j, int k) const { return offset + i + sy * j + sz * k; }
   double x(int i) const { return origin[0] + dx * i; }
@@ -86,6 +90,24 @@ struct Level {
     return std::sqrt(d2);
   }
 };
+
+/// The part of `coarse` that `fine` covers, in coarse's spacing and memory layout: its point
+/// (I, J, K) is the coarse point at fine's point (2I, 2J, 2K). Where both levels cover one cube it
+/// is `coarse` itself, so a transfer between a box and the coarser box about it is the same code
+/// as one between a level and its coarsening.
+inline Level covered_part(const Level& coarse, const Level& fine) {
+  Level part = coarse;
+  std::ptrdiff_t shift[3];
+  for (std::size_t a = 0; a < 3; ++a)
+    shift[a] = static_cast<std::ptrdiff_t>(std::lround((fine.origin[a] - coarse.origin[a]) / coarse.dx));
+  part.n = fine.n / 2;
+  part.nx = (fine.nx - 1) / 2 + 1;
+  part.ny = (fine.ny - 1) / 2 + 1;
+  part.nz = (fine.nz - 1) / 2 + 1;
+  part.origin = fine.origin;
+  part.offset = coarse.offset + shift[0] + coarse.sy * shift[1] + coarse.sz * shift[2];
+  return part;
+}
 
 /// Calls fn(p, x, y) for the array index p and the coordinates of every stored point of a level
 /// (ghosts excluded), OpenMP over planes and each row an omp simd loop: for pointwise densities and
@@ -133,6 +155,15 @@ class Grid : public core::Service {
   virtual const Level& level(int index) const = 0;
   const Level& finest() const { return level(0); }
   const Level& coarsest() const { return level(num_levels() - 1); }
+  /// Nested boxes: levels 0 .. num_boxes() - 1 are boxes of one spacing each, each inside the next;
+  /// the outermost box's faces are the domain's boundary. 1 for a single cube.
+  int num_boxes() const {
+    int boxes = 1;
+    while (boxes < num_levels() && level(boxes - 1).inner) ++boxes;
+    return boxes;
+  }
+  /// The outermost box: the domain (its faces carry the outer boundary conditions).
+  const Level& domain() const { return level(num_boxes() - 1); }
 
   /// Registers and allocates (zeroed) a field with one component per tensor kind; registering the
   /// same name again with the same components returns the existing id, a conflicting one throws.
@@ -194,6 +225,14 @@ class Grid : public core::Service {
   /// The stored values on the x axis (j at y = 0, k at z = 0): pairs (x_i, value).
   virtual std::vector<std::array<double, 2>> line_x(const double* values, int level) const = 0;
 };
+
+/// For a plugin that reads the finest level as the whole domain: refuses nested boxes with one
+/// input error naming the parameter.
+inline void require_single_box(const Grid& grid, const std::string& plugin) {
+  if (grid.num_boxes() > 1)
+    throw core::InputError(fmt::format(
+        "grid.boxes = {}: the plugin '{}' works on a single cube only (grid.boxes = 1)", grid.num_boxes(), plugin));
+}
 
 /// A grid field's name and number of components, for memory estimates.
 struct FieldSize {
