@@ -6,6 +6,7 @@
 //   bhnsid-bench sweep [--n N] [--threads T] [--lower none|momentum|shift|shift-no-hole]
 //   bhnsid-bench robin [--n N] [--threads T]
 //   bhnsid-bench colour-split [--n N] [--threads T]
+//   bhnsid-bench boxes [--n N] [--boxes B] [--threads T] [--reps R]
 //
 // solves the hypre peer's problem (../shared/peers/src/problem.hpp: -Laplace u = f on the unit
 // cube, N^3 interior unknowns, h = 1/(N+1), homogeneous Dirichlet, u = g(x)g(y)g(z) with
@@ -335,6 +336,39 @@ int poisson(int n, int threads, int reps, double tau_factor, const std::vector<s
   return 0;
 }
 
+// Nested boxes, grid.boxes = 1 .. most, on mms's ball problem (mass 1, radius 0.5, its Robin
+// condition about the ball's centre): the finest box [-1, 1]^3 of n intervals, each box more
+// doubles the domain and adds n^3/2 points. One line per box count: the solve's wall time per
+// stored point of the boxes, which stays flat when the composite cycle costs what a cube's does.
+int boxes(int n, int most, int threads, int reps) {
+  for (int b = 1; b <= most; ++b) {
+    std::ostringstream par;
+    par << "plugins: [grid, multigrid, mms]\n"
+        << "run:\n  threads: " << threads << "\n"
+        << "grid:\n  n: " << n << "\n  dx: " << 2.0 / n << "\n  boxes: " << b << "\n"
+        << "multigrid:\n  tau_factor: 1e-3\n"
+        << "mms:\n  problem: ball\n  robin_centre: [0.1, 0, 0]\n";
+    const Measured m = best_of(par.str(), {}, reps);
+    const json& s = m.summary["scalars"];
+    const double points = static_cast<double>(b) * (n + 1) * (n + 1) * (n / 2 + 1);
+    const double solve = s.value("multigrid_seconds", 0.0);
+    json out = {{"case", "boxes"},
+                {"n", n},
+                {"boxes", b},
+                {"threads", threads},
+                {"domain_half_width", static_cast<double>(1 << (b - 1))},
+                {"box_points", points},
+                {"seconds", m.seconds},
+                {"solve_seconds", solve},
+                {"solve_ns_per_point", solve / points * 1e9},
+                {"cycles", s.value("multigrid_cycles", 0.0)},
+                {"factor", s.value("multigrid_factor", 0.0)},
+                {"max_error", s.value("error_max", 0.0)}};
+    std::cout << out.dump() << std::endl;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -385,7 +419,21 @@ int main(int argc, char** argv) {
                                 "core's vector sweep (principal part) beside the same sweep on colour-split storage, ns per point");
   cs->add_option("--n", split_n, "intervals per axis, a power of 2 >= 32");
   cs->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  int box_n = 64, most_boxes = 4;
+  auto* nb = app.add_subcommand("boxes", "nested boxes 1 .. B on the ball problem: solve time per stored point");
+  nb->add_option("--n", box_n, "intervals per side of every box, divisible by 4");
+  nb->add_option("--boxes", most_boxes, "most boxes")->check(CLI::Range(1, 16));
+  nb->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  nb->add_option("--reps", reps, "timed runs after one warm-up; the best is reported")->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
+  if (nb->parsed()) {
+    try {
+      return boxes(box_n, most_boxes, threads, reps);
+    } catch (const std::exception& e) {
+      std::cerr << "bhnsid-bench: " << e.what() << "\n";
+      return 1;
+    }
+  }
   if (w->parsed()) return bhnsid::bench::vector_sweep(sweep_n, threads, sweep_lower);
   if (cs->parsed()) return bhnsid::bench::colour_split_sweep(split_n, threads);
   if (b->parsed()) return bhnsid::bench::robin_rows(robin_n, threads);
