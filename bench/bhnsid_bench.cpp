@@ -426,40 +426,23 @@ int main(int argc, char** argv) {
   nb->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
   nb->add_option("--reps", reps, "timed runs after one warm-up; the best is reported")->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
-  if (nb->parsed()) {
+  // A failed benchmark run is one line on stderr and exit 1.
+  auto guarded = [](auto&& bench) {
     try {
-      return boxes(box_n, most_boxes, threads, reps);
+      return bench();
     } catch (const std::exception& e) {
       std::cerr << "bhnsid-bench: " << e.what() << "\n";
       return 1;
     }
-  }
+  };
+  if (nb->parsed()) return guarded([&] { return boxes(box_n, most_boxes, threads, reps); });
   if (w->parsed()) return bhnsid::bench::vector_sweep(sweep_n, threads, sweep_lower);
   if (cs->parsed()) return bhnsid::bench::colour_split_sweep(split_n, threads);
   if (b->parsed()) return bhnsid::bench::robin_rows(robin_n, threads);
-  if (q->parsed()) {
-    try {
-      return puncture(pn, threads, reps, puncture_tau);
-    } catch (const std::exception& e) {
-      std::cerr << "bhnsid-bench: " << e.what() << "\n";
-      return 1;
-    }
-  }
-  if (bin->parsed()) {
-    try {
-      return binary(bn, threads, reps, binary_parfile);
-    } catch (const std::exception& e) {
-      std::cerr << "bhnsid-bench: " << e.what() << "\n";
-      return 1;
-    }
-  }
+  if (q->parsed()) return guarded([&] { return puncture(pn, threads, reps, puncture_tau); });
+  if (bin->parsed()) return guarded([&] { return binary(bn, threads, reps, binary_parfile); });
   // The benchmark's cycle; a --set of the same key, applied later, wins.
   std::vector<std::string> overrides = poisson_cycle;
   overrides.insert(overrides.end(), user_overrides.begin(), user_overrides.end());
-  try {
-    return poisson(n, threads, reps, tau_factor, overrides);
-  } catch (const std::exception& e) {
-    std::cerr << "bhnsid-bench: " << e.what() << "\n";
-    return 1;
-  }
+  return guarded([&] { return poisson(n, threads, reps, tau_factor, overrides); });
 }
